@@ -1,0 +1,14 @@
+// `seedcal calibrate`: see DESIGN.md ("Interface").
+#include "calibrate/cli/commands.hpp"
+#include "calibrate/cli/errors.hpp"
+
+namespace seedcal {
+
+void add_calibrate_command(CLI::App& app, GlobalOptions& g) {
+  CLI::App* sub = app.add_subcommand("calibrate", "(calibrate: not available in this build yet)");
+  add_common_options(*sub, g);
+  sub->allow_extras();
+  sub->callback([] { throw RunFailed("'seedcal calibrate' is not available in this build yet"); });
+}
+
+}  // namespace seedcal

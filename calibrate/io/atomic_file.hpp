@@ -1,0 +1,19 @@
+#pragma once
+// Output files are written to a temporary file in the same directory and renamed over the target,
+// so a crash or kill never leaves a half-written metrics file or report.
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+namespace seedcal {
+
+void write_file_atomic(const std::string& path, const std::string& content);
+
+// JSON with every non-finite number refused: a NaN or Inf must never reach an output file.
+// Throws RunFailed naming the offending key.
+void write_json_atomic(const std::string& path, const nlohmann::json& j);
+
+// Returns the first JSON pointer to a non-finite number, or "" when there is none.
+std::string find_non_finite(const nlohmann::json& j, const std::string& where = "");
+
+}  // namespace seedcal

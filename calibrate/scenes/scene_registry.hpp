@@ -1,0 +1,33 @@
+#pragma once
+// The table of scene kinds `seedcal run` knows, each a function that reads its config, runs, and
+// returns its metrics (the index under its stable key plus the run report).
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "calibrate/config/toml_reader.hpp"
+#include "solver/scenes/scene_common.hpp"
+
+namespace seedcal {
+
+struct SceneContext {
+  std::string config_path;
+  std::string out_dir;  // where the scene may write extra files (CSV, pictures); may be empty
+  int threads = 1;
+  std::uint64_t seed = 0;
+};
+
+using SceneRunner = std::function<nlohmann::json(TomlReader& root, const SceneContext& ctx)>;
+
+const std::map<std::string, SceneRunner>& scene_registry();
+
+// The run-report part of every metrics object.
+void add_run_report(nlohmann::json& j, const RunReport& r);
+
+// Scene runners (one file each).
+nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx);
+
+}  // namespace seedcal

@@ -1,0 +1,42 @@
+#pragma once
+// Verlet neighbour list of sphere pairs from different bodies, with per-pair contact history.
+//
+// Pairs are grouped by body pair (body_i < body_j) and ordered by (body_i, body_j, sphere_i,
+// sphere_j): the multi-contact correction needs the number of touching sphere pairs of each body
+// pair, and the ordering makes the list (and so every result) independent of the thread count.
+// History (tangential spring, rolling spring) is carried across rebuilds by a linear merge on the
+// same key. The list is rebuilt only when some sphere moved more than half the skin.
+#include <cstdint>
+#include <vector>
+
+#include "solver/broadphase/cell_grid.hpp"
+#include "solver/core/body_state.hpp"
+
+namespace seedcal {
+
+class VerletList {
+ public:
+  // `keep_rolling`: allocate rolling-spring history (EPSD only).
+  void build(const SphereState& spheres, double skin_m, bool keep_rolling);
+  bool needs_rebuild(const SphereState& spheres) const;
+
+  std::size_t pair_count() const { return si_.size(); }
+  std::size_t group_count() const { return group_start_.empty() ? 0 : group_start_.size() - 1; }
+  const std::vector<std::uint32_t>& si() const { return si_; }
+  const std::vector<std::uint32_t>& sj() const { return sj_; }
+  const std::vector<std::uint32_t>& group_start() const { return group_start_; }
+  std::vector<Vec3>& tangential() { return tangential_; }
+  std::vector<Vec3>& rolling() { return rolling_; }
+  std::size_t builds() const { return builds_; }
+  double skin_m() const { return skin_m_; }
+
+ private:
+  CellGrid grid_;
+  std::vector<std::uint32_t> si_, sj_, group_start_;
+  std::vector<Vec3> tangential_, rolling_;
+  std::vector<Vec3> built_at_;  // sphere centres at the last build
+  double skin_m_ = 0.0;
+  std::size_t builds_ = 0;
+};
+
+}  // namespace seedcal

@@ -1,0 +1,28 @@
+#pragma once
+// Which contact models a run uses; chosen once per run, the kernels are compiled per combination.
+#include <string>
+#include <string_view>
+
+namespace seedcal {
+
+enum class NormalModel { hertz_mindlin, hmnr };
+enum class RollingModel { none, cdt, epsd };
+
+struct ContactOptions {
+  NormalModel normal = NormalModel::hertz_mindlin;
+  RollingModel rolling = RollingModel::none;
+  // Clip the normal force at zero (no attraction at the end of a damped contact). Off by default:
+  // with the force unclipped the set restitution comes out exactly; clipping raises it (for
+  // e = 0.45 to about 0.51, see tests/physics/restitution_test.cpp).
+  bool clip_attractive = false;
+  // EPSD (type C) viscous damping ratio of the rolling dashpot, Ai et al. (2011) eq. 17; 0.3 is
+  // their recommended value.
+  double epsd_damping_ratio = 0.3;
+};
+
+const char* to_string(NormalModel m);
+const char* to_string(RollingModel m);
+bool parse_normal_model(std::string_view s, NormalModel& out);
+bool parse_rolling_model(std::string_view s, RollingModel& out);
+
+}  // namespace seedcal

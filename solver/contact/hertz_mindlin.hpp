@@ -1,0 +1,82 @@
+#pragma once
+// Hertz-Mindlin (no slip) contact force, as in the common commercial formulation (EDEM Theory
+// Reference Guide; Tsuji, Tanaka & Ishida 1992 for the damping; Mindlin 1949 for the tangential
+// stiffness). With dn the overlap, R* the effective radius, m* the effective (body) mass:
+//
+//   Fn  = 4/3 E* sqrt(R*) dn^1.5                      elastic normal force
+//   Sn  = 2 E* sqrt(R* dn)                            normal contact stiffness dFn/ddn
+//   Fnd = -2 sqrt(5/6) beta sqrt(Sn m*) vn            normal damping (beta < 0: opposes vn)
+//   St  = 8 G* sqrt(R* dn)                            tangential stiffness
+//   Ft  = -St dt - 2 sqrt(5/6) beta sqrt(St m*) vt    spring on the accumulated tangential
+//                                                     displacement dt, plus damping
+//   |Ft| <= mu_s |Fn|                                 Coulomb limit; on slip the spring is reset
+//                                                     so that it carries exactly the limit force
+//
+// `damping_scale` multiplies both damping coefficients: 1 for plain Hertz-Mindlin, 1/sqrt(n) for
+// the multi-contact correction (see hmnr.hpp).
+#include <cmath>
+
+#include "solver/contact/contact_model.hpp"
+#include "solver/core/materials.hpp"
+#include "solver/core/vec.hpp"
+
+namespace seedcal {
+
+// Geometry and kinematics of one sphere-level contact, seen from sphere i.
+struct ContactKinematics {
+  Vec3 normal;        // unit vector from i towards j (or towards the wall)
+  double overlap_m;   // > 0
+  double r_star_m;    // 1/R* = 1/R_i + 1/R_j (R_j = inf for a wall)
+  double m_star_kg;   // 1/m* = 1/m_i + 1/m_j with body masses (m_j = inf for a wall)
+  Vec3 v_rel_m_s;     // velocity of i's material point at the contact relative to j's
+};
+
+struct ContactForce {
+  Vec3 force_on_i_n;       // total (normal + tangential) force on i; j receives the opposite
+  double normal_force_n;   // signed normal force (positive = repulsive), after any clipping
+  double normal_stiffness_n_m;  // Sn, for the EPSD rolling spring
+};
+
+// sqrt(5/6), the Hertz-Mindlin damping prefactor.
+inline constexpr double kSqrtFiveSixths = 0.91287092917527685576;
+
+inline ContactForce hertz_mindlin(const PairConstants& c, const ContactKinematics& k,
+                                  Vec3& tangential_disp_m, double dt_s, double damping_scale,
+                                  bool clip_attractive) {
+  const double sqrt_rd = std::sqrt(k.r_star_m * k.overlap_m);
+  const double sn = 2.0 * c.e_star_pa * sqrt_rd;
+  const double st = 8.0 * c.g_star_pa * sqrt_rd;
+  // -2 sqrt(5/6) beta >= 0 because beta <= 0.
+  const double damp = -2.0 * kSqrtFiveSixths * c.beta * damping_scale;
+  const double cn = damp * std::sqrt(sn * k.m_star_kg);
+  const double ct = damp * std::sqrt(st * k.m_star_kg);
+
+  const double vn = k.v_rel_m_s.dot(k.normal);  // > 0: approaching
+  const Vec3 vt = k.v_rel_m_s - vn * k.normal;
+
+  // Fn_elastic = 4/3 E* sqrt(R*) dn^1.5 = 2/3 Sn dn.
+  double fn = (2.0 / 3.0) * sn * k.overlap_m + cn * vn;
+  if (clip_attractive && fn < 0.0) fn = 0.0;
+
+  // Keep the tangential spring in the current tangent plane, preserving its length (the contact
+  // frame rotates with the pair; Luding 2008, "Cohesive, frictional powders", sec. 2.2.3).
+  const double len0 = tangential_disp_m.norm();
+  tangential_disp_m -= tangential_disp_m.dot(k.normal) * k.normal;
+  const double len1 = tangential_disp_m.norm();
+  if (len1 > 0.0) tangential_disp_m *= len0 / len1;
+  tangential_disp_m += vt * dt_s;
+
+  // Tangential force on i opposes i's slip relative to j.
+  Vec3 ft = -st * tangential_disp_m - ct * vt;
+  const double ft_max = c.static_friction * std::abs(fn);
+  const double ft_mag = ft.norm();
+  if (ft_mag > ft_max) {
+    // Sliding: cap at the Coulomb limit and reset the spring so that it alone carries the limit
+    // force along the current direction (LIGGGHTS / LAMMPS GRANULAR "mindlin" behaviour).
+    ft *= (ft_mag > 0.0 ? ft_max / ft_mag : 0.0);
+    tangential_disp_m = st > 0.0 ? Vec3(-(ft + ct * vt) / st) : Vec3::Zero();
+  }
+  return {-fn * k.normal + ft, fn, sn};
+}
+
+}  // namespace seedcal

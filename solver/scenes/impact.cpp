@@ -1,0 +1,87 @@
+#include "solver/scenes/impact.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace seedcal {
+
+ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
+  const auto wall_t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+
+  SimulationOptions opt;
+  opt.contact = spec.physics.contact;
+  opt.gravity_m_s2 = spec.physics.gravity_m_s2;
+  opt.threads = spec.threads;
+  opt.seed = spec.seed;
+  opt.track_body_contacts = true;
+  opt.dt_s = 1.0;  // replaced below, once the world exists and the limits are known
+  Simulation probe(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
+  for (const BodyDef& b : spec.bodies) probe.add_body(b);
+
+  // Expected impact speed: the largest relative speed between two bodies or a body and a wall,
+  // plus what gravity adds over the run.
+  double v_exp = 0.0;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    v_exp = std::max(v_exp, spec.bodies[i].velocity_m_s.norm());
+    for (std::size_t j = i + 1; j < spec.bodies.size(); ++j)
+      v_exp = std::max(v_exp, (spec.bodies[i].velocity_m_s - spec.bodies[j].velocity_m_s).norm());
+  }
+  v_exp += spec.physics.gravity_m_s2.norm() * spec.duration_s;
+  opt.dt_s = choose_time_step(spec.time_step, time_step_limits(probe, v_exp));
+
+  Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
+  for (const BodyDef& b : spec.bodies) sim.add_body(b);
+  for (const ImpactWallSpec& w : spec.walls) {
+    Wall wall;
+    wall.name = "plane";
+    wall.shape = std::make_shared<PlaneShape>(w.normal);
+    wall.material = w.material;
+    wall.pose.origin_m = w.point_m;
+    sim.add_wall(std::move(wall));
+  }
+
+  ImpactResult res;
+  const auto steps = static_cast<std::uint64_t>(std::llround(spec.duration_s / opt.dt_s));
+  bool in_first_impact = false, first_impact_done = false;
+  res.run.stop_reason = "duration reached";
+  for (std::uint64_t s = 0; s < steps; ++s) {
+    if (!sim.step()) {
+      res.run.failure = sim.failure();
+      res.run.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
+      break;
+    }
+    const StepStats& st = sim.stats();
+    const std::size_t touching = st.sphere_contacts + st.wall_contacts;
+    if (!first_impact_done) {
+      if (touching > 0 && !in_first_impact) {
+        in_first_impact = true;
+        res.first_touch_s = sim.time_s() - opt.dt_s;  // contact began during this step
+      } else if (touching == 0 && in_first_impact) {
+        in_first_impact = false;
+        first_impact_done = true;
+        res.contact_duration_s = (sim.time_s() - opt.dt_s) - res.first_touch_s;
+      }
+    }
+    res.max_overlap_m = std::max(res.max_overlap_m, st.max_overlap_m);
+    res.max_normal_force_n = std::max(res.max_normal_force_n, st.max_normal_force_n);
+    res.max_contact_points = std::max(res.max_contact_points, st.max_body_contacts);
+    if (observer) observer(sim);
+  }
+  if (in_first_impact) res.contact_duration_s = sim.time_s() - res.first_touch_s;
+
+  const BodyState& B = sim.bodies();
+  for (std::size_t b = 0; b < B.size(); ++b)
+    res.final_states.push_back({B.position_m[b], B.velocity_m_s[b], B.angular_velocity[b]});
+  res.run.steps = sim.step_count();
+  res.run.bodies = B.size();
+  res.run.spheres = sim.spheres().size();
+  res.run.dt_s = opt.dt_s;
+  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  return res;
+}
+
+}  // namespace seedcal

@@ -1,0 +1,58 @@
+#pragma once
+// Pieces every scene shares: the material/interaction set, the time-step rule, and what a run
+// reports about itself.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/contact/contact_model.hpp"
+#include "solver/core/materials.hpp"
+#include "solver/sim/guards.hpp"
+#include "solver/sim/simulation.hpp"
+
+namespace seedcal {
+
+struct PhysicsSpec {
+  std::vector<Material> materials;
+  std::vector<Interaction> interactions;
+  ContactOptions contact;
+  Vec3 gravity_m_s2 = Vec3(0.0, 0.0, -9.81);
+};
+
+struct TimeStepSpec {
+  double dt_s = 0.0;               // 0: rayleigh_fraction x the Rayleigh step
+  double rayleigh_fraction = 0.2;
+  bool force_dt = false;           // run a step above the stable limit anyway
+};
+
+// The stable limit used to refuse a time step: the smaller of the Rayleigh step of the smallest
+// sphere and a tenth of the shortest Hertz contact time at the expected impact speed (ten steps
+// per contact is the least that resolves a collision; fewer and the explicit integrator gains
+// energy). Documented in docs/time_step.md.
+struct TimeStepLimits {
+  double rayleigh_s = 0.0;
+  double contact_time_s = 0.0;  // shortest Hertz contact time at the expected speed
+  double impact_speed_m_s = 0.0;
+  double stable_limit_s() const;
+};
+
+TimeStepLimits time_step_limits(const Simulation& sim, double expected_impact_speed_m_s);
+
+// Picks dt from the spec or throws SettingError("dt_s" / "rayleigh_fraction") naming the limit.
+double choose_time_step(const TimeStepSpec& spec, const TimeStepLimits& limits);
+
+struct RunReport {
+  double cpu_seconds = 0.0;
+  double wall_seconds = 0.0;
+  std::uint64_t steps = 0;
+  std::size_t bodies = 0;
+  std::size_t spheres = 0;
+  double dt_s = 0.0;
+  std::string stop_reason;
+  GuardFailure failure;  // status ok unless a guard stopped the run
+};
+
+// CPU time of the whole process (all threads), s.
+double process_cpu_seconds();
+
+}  // namespace seedcal

@@ -1,0 +1,229 @@
+// The contact force kernel: one pass over the sphere-sphere groups and one over the sphere-wall
+// groups, compiled once per (normal model, rolling model) combination and chosen once per step by
+// a switch (no model tests inside the loops).
+#include <algorithm>
+#include <cmath>
+
+#include "solver/contact/hertz_mindlin.hpp"
+#include "solver/contact/hmnr.hpp"
+#include "solver/contact/rolling_cdt.hpp"
+#include "solver/contact/rolling_epsd.hpp"
+#include "solver/sim/contact_forces.hpp"
+#include "solver/sim/simulation.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace seedcal {
+
+struct ForceKernel {
+  template <NormalModel NM, RollingModel RM>
+  static void run(Simulation& s, std::vector<int>& sphere_group_touch,
+                  std::vector<int>& wall_group_touch, ThreadStats& total);
+};
+
+template <NormalModel NM, RollingModel RM>
+void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
+                      std::vector<int>& wall_group_touch, ThreadStats& total) {
+  const int threads = std::max(1, s.options_.threads);
+  const double dt = s.options_.dt_s;
+  const bool clip = s.options_.contact.clip_attractive;
+  const double eta_r = s.options_.contact.epsd_damping_ratio;
+  BodyState& B = s.bodies_;
+  const SphereState& S = s.spheres_;
+  const InteractionTable& table = s.table_;
+  const std::size_t nb = B.size();
+  const std::size_t nw = s.walls_.size();
+
+  auto& pairs = s.pairs_;
+  const auto& gs = pairs.group_start();
+  const auto& si = pairs.si();
+  const auto& sj = pairs.sj();
+  auto& tang = pairs.tangential();
+  auto& roll = pairs.rolling();
+  const std::size_t groups = pairs.group_count();
+  sphere_group_touch.assign(groups, 0);
+
+  auto& wl = s.wall_pairs_;
+  const auto& wgs = wl.group_start();
+  const auto& ws = wl.sphere();
+  const auto& ww = wl.wall();
+  const auto& wp = wl.primitive();
+  auto& wtang = wl.tangential();
+  auto& wroll = wl.rolling();
+  const std::size_t wgroups = wl.group_count();
+  wall_group_touch.assign(wgroups, 0);
+
+  std::vector<ThreadStats> tstats(static_cast<std::size_t>(threads));
+
+#pragma omp parallel num_threads(threads)
+  {
+    int t = 0;
+#ifdef _OPENMP
+    t = omp_get_thread_num();
+#endif
+    Vec3* F = s.thread_force_[static_cast<std::size_t>(t)].data();
+    Vec3* T = s.thread_torque_[static_cast<std::size_t>(t)].data();
+    Vec3* WF = s.thread_wall_force_[static_cast<std::size_t>(t)].data();
+    Vec3* WT = s.thread_wall_torque_[static_cast<std::size_t>(t)].data();
+    std::fill(F, F + nb, Vec3::Zero());
+    std::fill(T, T + nb, Vec3::Zero());
+    std::fill(WF, WF + nw, Vec3::Zero());
+    std::fill(WT, WT + nw, Vec3::Zero());
+    ThreadStats& st = tstats[static_cast<std::size_t>(t)];
+
+    // ---- sphere-sphere, one body pair per group -----------------------------------------------
+#pragma omp for schedule(static)
+    for (std::size_t g = 0; g < groups; ++g) {
+      const std::uint32_t a = gs[g], e = gs[g + 1];
+      double scale = 1.0;
+      if constexpr (NM == NormalModel::hmnr) {
+        int n = 0;
+        for (std::uint32_t k = a; k < e; ++k) {
+          const double rs = S.radius_m[si[k]] + S.radius_m[sj[k]];
+          if ((S.position_m[sj[k]] - S.position_m[si[k]]).squaredNorm() < rs * rs) ++n;
+        }
+        scale = hmnr_damping_scale(n);
+      }
+      int touching = 0;
+      for (std::uint32_t k = a; k < e; ++k) {
+        const std::uint32_t i = si[k], j = sj[k];
+        const double ri = S.radius_m[i], rj = S.radius_m[j];
+        const Vec3 d = S.position_m[j] - S.position_m[i];
+        const double dist2 = d.squaredNorm();
+        const double rs = ri + rj;
+        if (dist2 >= rs * rs) {
+          tang[k].setZero();
+          if constexpr (RM == RollingModel::epsd) roll[k].setZero();
+          continue;
+        }
+        ++touching;
+        const double dist = std::sqrt(dist2);
+        const Vec3 normal = dist > 0.0 ? Vec3(d / dist) : Vec3::UnitZ();
+        const double overlap = rs - dist;
+        const std::uint32_t bi = S.body[i], bj = S.body[j];
+        const Vec3 cp = S.position_m[i] + (ri - 0.5 * overlap) * normal;
+        const Vec3 rci = cp - B.position_m[bi];
+        const Vec3 rcj = cp - B.position_m[bj];
+        const Vec3& wi = B.angular_velocity[bi];
+        const Vec3& wj = B.angular_velocity[bj];
+        const Vec3 vrel = (B.velocity_m_s[bi] + wi.cross(rci)) - (B.velocity_m_s[bj] + wj.cross(rcj));
+        const PairConstants& pc = table.pair(S.material[i], S.material[j]);
+        const double mi = B.mass_kg[bi], mj = B.mass_kg[bj];
+        const ContactKinematics kin{normal, overlap, ri * rj / rs, mi * mj / (mi + mj), vrel};
+        const ContactForce cf = hertz_mindlin(pc, kin, tang[k], dt, scale, clip);
+        F[bi] += cf.force_on_i_n;
+        F[bj] -= cf.force_on_i_n;
+        T[bi] += rci.cross(cf.force_on_i_n);
+        T[bj] -= rcj.cross(cf.force_on_i_n);
+        if constexpr (RM == RollingModel::cdt) {
+          T[bi] += cdt_torque(pc.rolling_friction, cf.normal_force_n, ri - 0.5 * overlap, wi);
+          T[bj] += cdt_torque(pc.rolling_friction, cf.normal_force_n, rj - 0.5 * overlap, wj);
+        } else if constexpr (RM == RollingModel::epsd) {
+          const double ii = B.principal_inertia[bi].mean() + mi * rci.squaredNorm();
+          const double ij = B.principal_inertia[bj].mean() + mj * rcj.squaredNorm();
+          const EpsdInput in{normal, wi - wj, pc.rolling_friction, cf.normal_force_n,
+                             cf.normal_stiffness_n_m, kin.r_star_m, ii * ij / (ii + ij), eta_r, dt};
+          const Vec3 tau = epsd_torque(in, roll[k]);
+          T[bi] += tau;
+          T[bj] -= tau;
+        }
+        st.note(overlap, cf.normal_force_n, overlap / std::min(ri, rj), bi);
+      }
+      sphere_group_touch[g] = touching;
+      st.sphere_contacts += static_cast<std::size_t>(touching);
+    }
+
+    // ---- sphere-wall, one (body, wall) pair per group --------------------------------------------
+#pragma omp for schedule(static)
+    for (std::size_t g = 0; g < wgroups; ++g) {
+      const std::uint32_t a = wgs[g], e = wgs[g + 1];
+      const Wall& wall = s.walls_[ww[a]];
+      const WallShape& shape = *wall.shape;
+      double scale = 1.0;
+      if constexpr (NM == NormalModel::hmnr) {
+        int n = 0;
+        WallHit hit;
+        for (std::uint32_t k = a; k < e; ++k) {
+          const double r = S.radius_m[ws[k]];
+          if (shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, S.position_m[ws[k]]),
+                            r, hit) && hit.distance < r)
+            ++n;
+        }
+        scale = hmnr_damping_scale(n);
+      }
+      int touching = 0;
+      for (std::uint32_t k = a; k < e; ++k) {
+        const std::uint32_t i = ws[k];
+        const double r = S.radius_m[i];
+        WallHit hit;
+        if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, S.position_m[i]), r,
+                           hit) || hit.distance >= r) {
+          wtang[k].setZero();
+          if constexpr (RM == RollingModel::epsd) wroll[k].setZero();
+          continue;
+        }
+        ++touching;
+        const double overlap = r - hit.distance;
+        const Vec3 normal = wall.pose.orientation * hit.normal;
+        const Vec3 cp = wall.pose.origin_m + wall.pose.orientation * hit.point;
+        const std::uint32_t b = S.body[i];
+        const Vec3 rc = cp - B.position_m[b];
+        const Vec3& w = B.angular_velocity[b];
+        const Vec3 vrel = B.velocity_m_s[b] + w.cross(rc) - wall.velocity_at(cp);
+        const PairConstants& pc = table.pair(S.material[i], wall.material);
+        const ContactKinematics kin{normal, overlap, r, B.mass_kg[b], vrel};
+        const ContactForce cf = hertz_mindlin(pc, kin, wtang[k], dt, scale, clip);
+        F[b] += cf.force_on_i_n;
+        T[b] += rc.cross(cf.force_on_i_n);
+        WF[ww[a]] -= cf.force_on_i_n;
+        WT[ww[a]] -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
+        if constexpr (RM == RollingModel::cdt) {
+          T[b] += cdt_torque(pc.rolling_friction, cf.normal_force_n, hit.distance, w);
+        } else if constexpr (RM == RollingModel::epsd) {
+          const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
+          const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
+                             cf.normal_force_n, cf.normal_stiffness_n_m, r, ib, eta_r, dt};
+          const Vec3 tau = epsd_torque(in, wroll[k]);
+          T[b] += tau;
+          WT[ww[a]] -= tau;
+        }
+        st.note(overlap, cf.normal_force_n, overlap / r, b);
+      }
+      wall_group_touch[g] = touching;
+      st.wall_contacts += static_cast<std::size_t>(touching);
+    }
+  }
+
+  for (const ThreadStats& st : tstats) {
+    total.sphere_contacts += st.sphere_contacts;
+    total.wall_contacts += st.wall_contacts;
+    total.max_overlap = std::max(total.max_overlap, st.max_overlap);
+    total.max_fn = std::max(total.max_fn, st.max_fn);
+    if (st.worst_ratio > total.worst_ratio ||
+        (st.worst_ratio == total.worst_ratio && st.worst_body >= 0 &&
+         (total.worst_body < 0 || st.worst_body < total.worst_body))) {
+      total.worst_ratio = st.worst_ratio;
+      total.worst_body = st.worst_body;
+    }
+  }
+}
+
+// Dispatch: the model combination is chosen once, at run time, from the options.
+void run_force_kernel(Simulation& s, NormalModel nm, RollingModel rm, std::vector<int>& sg,
+                      std::vector<int>& wg, ThreadStats& total) {
+  using N = NormalModel;
+  using R = RollingModel;
+  if (nm == N::hertz_mindlin) {
+    if (rm == R::none) ForceKernel::run<N::hertz_mindlin, R::none>(s, sg, wg, total);
+    else if (rm == R::cdt) ForceKernel::run<N::hertz_mindlin, R::cdt>(s, sg, wg, total);
+    else ForceKernel::run<N::hertz_mindlin, R::epsd>(s, sg, wg, total);
+  } else {
+    if (rm == R::none) ForceKernel::run<N::hmnr, R::none>(s, sg, wg, total);
+    else if (rm == R::cdt) ForceKernel::run<N::hmnr, R::cdt>(s, sg, wg, total);
+    else ForceKernel::run<N::hmnr, R::epsd>(s, sg, wg, total);
+  }
+}
+
+}  // namespace seedcal

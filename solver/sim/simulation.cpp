@@ -1,0 +1,326 @@
+#include "solver/sim/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "solver/integrate/free_rotation.hpp"
+#include "solver/sim/contact_forces.hpp"
+#include "solver/sim/time_step.hpp"
+
+namespace seedcal {
+
+const char* to_string(RunStatus s) {
+  switch (s) {
+    case RunStatus::ok: return "ok";
+    case RunStatus::non_finite: return "non_finite";
+    case RunStatus::energy_runaway: return "energy_runaway";
+    case RunStatus::deep_overlap: return "deep_overlap";
+    case RunStatus::aborted: return "aborted";
+  }
+  return "unknown";
+}
+
+BodyDef sphere_body(double radius_m, double density_kg_m3, std::uint16_t material) {
+  BodyDef d;
+  d.spheres.push_back({Vec3::Zero(), radius_m});
+  d.material = material;
+  d.mass_kg = density_kg_m3 * 4.0 / 3.0 * std::numbers::pi * radius_m * radius_m * radius_m;
+  d.principal_inertia_kg_m2 = Vec3::Constant(0.4 * d.mass_kg * radius_m * radius_m);
+  return d;
+}
+
+Simulation::Simulation(InteractionTable table, SimulationOptions options)
+    : table_(std::move(table)), options_(options), rng_(options.seed) {
+  if (!(options_.dt_s > 0.0)) throw std::invalid_argument("Simulation: dt_s must be > 0");
+  if (options_.threads < 1) options_.threads = 1;
+  bodies_.first_sphere.push_back(0);
+}
+
+std::uint32_t Simulation::add_body(const BodyDef& def) {
+  if (def.spheres.empty()) throw std::invalid_argument("add_body: a body needs at least one sphere");
+  if (!(def.mass_kg > 0.0)) throw std::invalid_argument("add_body: mass must be > 0");
+  const auto b = static_cast<std::uint32_t>(bodies_.size());
+  bodies_.position_m.push_back(def.position_m);
+  bodies_.orientation.push_back(def.orientation.normalized());
+  bodies_.velocity_m_s.push_back(def.velocity_m_s);
+  const Vec3& I = def.principal_inertia_kg_m2;
+  const bool iso = std::abs(I.x() - I.y()) <= 1e-12 * I.x() && std::abs(I.x() - I.z()) <= 1e-12 * I.x();
+  bodies_.isotropic.push_back(iso ? 1 : 0);
+  bodies_.principal_inertia.push_back(I);
+  bodies_.angular_momentum.push_back(
+      angular_momentum_from_velocity(bodies_.orientation.back(), I, def.angular_velocity_rad_s));
+  bodies_.angular_velocity.push_back(def.angular_velocity_rad_s);
+  bodies_.mass_kg.push_back(def.mass_kg);
+  bodies_.inv_mass.push_back(1.0 / def.mass_kg);
+  bodies_.force_n.push_back(Vec3::Zero());
+  bodies_.torque_n_m.push_back(Vec3::Zero());
+  for (const SphereDef& sd : def.spheres) {
+    spheres_.body.push_back(b);
+    spheres_.offset_body_m.push_back(sd.offset_m);
+    spheres_.radius_m.push_back(sd.radius_m);
+    spheres_.material.push_back(def.material);
+    spheres_.position_m.push_back(def.position_m + bodies_.orientation.back() * sd.offset_m);
+  }
+  bodies_.first_sphere.push_back(static_cast<std::uint32_t>(spheres_.size()));
+  ready_ = false;
+  reference_energy_j_ = -1.0;
+  return b;
+}
+
+std::size_t Simulation::add_wall(Wall wall) {
+  if (!wall.shape) throw std::invalid_argument("add_wall: wall '" + wall.name + "' has no shape");
+  walls_.push_back(std::move(wall));
+  ready_ = false;
+  return walls_.size() - 1;
+}
+
+void Simulation::set_body_motion(std::uint32_t b, const Vec3& v, const Vec3& w) {
+  bodies_.velocity_m_s[b] = v;
+  bodies_.angular_velocity[b] = w;
+  bodies_.angular_momentum[b] =
+      angular_momentum_from_velocity(bodies_.orientation[b], bodies_.principal_inertia[b], w);
+  reference_energy_j_ = -1.0;
+}
+
+double Simulation::rayleigh_time_step_s() const {
+  double dt = std::numeric_limits<double>::infinity();
+  const auto& mats = table_.materials();
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    const Material& m = mats[spheres_.material[i]];
+    dt = std::min(dt, seedcal::rayleigh_time_step_s(spheres_.radius_m[i], m.density_kg_m3,
+                                           m.shear_modulus_pa(), m.poisson_ratio));
+  }
+  return dt;
+}
+
+void Simulation::update_sphere_positions() {
+  const std::size_t n = spheres_.size();
+#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t b = spheres_.body[i];
+    const Vec3& off = spheres_.offset_body_m[i];
+    spheres_.position_m[i] = off.isZero(0.0) ? bodies_.position_m[b]
+                                             : Vec3(bodies_.position_m[b] + bodies_.orientation[b] * off);
+  }
+}
+
+void Simulation::ensure_ready() {
+  if (ready_) return;
+  double r_max = 0.0;
+  for (double r : spheres_.radius_m) r_max = std::max(r_max, r);
+  skin_m_ = options_.skin_m > 0.0 ? options_.skin_m : 0.2 * r_max;
+  const auto t = static_cast<std::size_t>(options_.threads);
+  thread_force_.assign(t, std::vector<Vec3>(bodies_.size()));
+  thread_torque_.assign(t, std::vector<Vec3>(bodies_.size()));
+  thread_wall_force_.assign(t, std::vector<Vec3>(walls_.size()));
+  thread_wall_torque_.assign(t, std::vector<Vec3>(walls_.size()));
+  update_sphere_positions();
+  rebuild_lists();
+  ready_ = true;
+  compute_forces();
+  if (reference_energy_j_ < 0.0) reference_energy_j_ = energy_budget_j();
+}
+
+void Simulation::rebuild_lists() {
+  // Rolling-spring history exists only for EPSD: no rolling history when it is not needed.
+  const bool rolling_history = options_.contact.rolling == RollingModel::epsd;
+  pairs_.build(spheres_, skin_m_, rolling_history);
+  wall_pairs_.build(spheres_, walls_, skin_m_, rolling_history);
+  wall_pose_at_build_.clear();
+  for (const Wall& w : walls_) wall_pose_at_build_.push_back(w.pose);
+}
+
+// Spheres and walls each may use half the skin before a pair can be missed; a wall's share is
+// bounded by how far its surface moved since the last build.
+bool Simulation::walls_moved_beyond_skin() const {
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    if (!walls_[w].motion) continue;
+    if (surface_displacement_m(*walls_[w].shape, wall_pose_at_build_[w], walls_[w].pose) >
+        0.5 * skin_m_)
+      return true;
+  }
+  return false;
+}
+
+void Simulation::compute_forces() {
+  ThreadStats total;
+  run_force_kernel(*this, options_.contact.normal, options_.contact.rolling, sphere_group_touch_,
+                   wall_group_touch_, total);
+  const std::size_t nb = bodies_.size();
+  const std::size_t nt = thread_force_.size();
+  const Vec3 g = options_.gravity_m_s2;
+#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  for (std::size_t b = 0; b < nb; ++b) {
+    Vec3 f = bodies_.mass_kg[b] * g, tq = Vec3::Zero();
+    for (std::size_t t = 0; t < nt; ++t) {
+      f += thread_force_[t][b];
+      tq += thread_torque_[t][b];
+    }
+    bodies_.force_n[b] = f;
+    bodies_.torque_n_m[b] = tq;
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    Vec3 f = Vec3::Zero(), tq = Vec3::Zero();
+    for (std::size_t t = 0; t < nt; ++t) {
+      f += thread_wall_force_[t][w];
+      tq += thread_wall_torque_[t][w];
+    }
+    walls_[w].force_n = f;
+    walls_[w].torque_n_m = tq;
+  }
+  stats_ = StepStats{};
+  stats_.sphere_contacts = total.sphere_contacts;
+  stats_.wall_contacts = total.wall_contacts;
+  stats_.max_overlap_m = total.max_overlap;
+  stats_.max_normal_force_n = total.max_fn;
+  if (options_.track_body_contacts) {
+    body_contacts_.assign(nb, 0);
+    const auto& gs = pairs_.group_start();
+    for (std::size_t k = 0; k < sphere_group_touch_.size(); ++k) {
+      if (sphere_group_touch_[k] == 0) continue;
+      const std::uint32_t p = gs[k];
+      body_contacts_[spheres_.body[pairs_.si()[p]]] += sphere_group_touch_[k];
+      body_contacts_[spheres_.body[pairs_.sj()[p]]] += sphere_group_touch_[k];
+    }
+    const auto& wgs = wall_pairs_.group_start();
+    for (std::size_t k = 0; k < wall_group_touch_.size(); ++k)
+      body_contacts_[spheres_.body[wall_pairs_.sphere()[wgs[k]]]] += wall_group_touch_[k];
+    for (int c : body_contacts_) stats_.max_body_contacts = std::max(stats_.max_body_contacts, c);
+  }
+  if (total.worst_ratio > options_.guards.max_overlap_fraction && failure_.status == RunStatus::ok) {
+    std::ostringstream m;
+    m << "overlap reached " << total.worst_ratio << " of a sphere radius (limit "
+      << options_.guards.max_overlap_fraction
+      << "); likely cause: particles too soft for the load (raise youngs_modulus_pa) or a time "
+         "step too large for the impact speed (lower dt_s)";
+    fail(RunStatus::deep_overlap, total.worst_body, m.str());
+  }
+  forces_valid_ = true;
+}
+
+bool Simulation::step() {
+  if (failure_.status != RunStatus::ok) return false;
+  ensure_ready();
+  const double dt = options_.dt_s;
+  const std::size_t nb = bodies_.size();
+  // Velocity Verlet, first half: kick with the forces of the previous step, then drift.
+#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  for (std::size_t b = 0; b < nb; ++b) {
+    bodies_.velocity_m_s[b] += (0.5 * dt * bodies_.inv_mass[b]) * bodies_.force_n[b];
+    bodies_.angular_momentum[b] += (0.5 * dt) * bodies_.torque_n_m[b];
+    bodies_.position_m[b] += dt * bodies_.velocity_m_s[b];
+    free_rotation_step(bodies_.orientation[b], bodies_.angular_momentum[b],
+                       bodies_.principal_inertia[b], bodies_.isotropic[b] != 0, dt);
+    bodies_.angular_velocity[b] = angular_velocity_from_momentum(
+        bodies_.orientation[b], bodies_.principal_inertia[b], bodies_.angular_momentum[b],
+        bodies_.isotropic[b] != 0);
+  }
+  for (Wall& w : walls_)
+    if (w.motion) w.motion->advance(w, time_s_, dt);
+  time_s_ += dt;
+  ++step_;
+  update_sphere_positions();
+  if (pairs_.needs_rebuild(spheres_) || walls_moved_beyond_skin()) rebuild_lists();
+  compute_forces();
+  // Second half kick with the new forces.
+#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  for (std::size_t b = 0; b < nb; ++b) {
+    bodies_.velocity_m_s[b] += (0.5 * dt * bodies_.inv_mass[b]) * bodies_.force_n[b];
+    bodies_.angular_momentum[b] += (0.5 * dt) * bodies_.torque_n_m[b];
+    bodies_.angular_velocity[b] = angular_velocity_from_momentum(
+        bodies_.orientation[b], bodies_.principal_inertia[b], bodies_.angular_momentum[b],
+        bodies_.isotropic[b] != 0);
+  }
+  return check_guards();
+}
+
+bool Simulation::run(std::uint64_t n) {
+  for (std::uint64_t i = 0; i < n; ++i)
+    if (!step()) return false;
+  return true;
+}
+
+double Simulation::kinetic_energy_j() const {
+  double e = 0.0;
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    e += 0.5 * bodies_.mass_kg[b] * bodies_.velocity_m_s[b].squaredNorm() +
+         0.5 * bodies_.angular_momentum[b].dot(bodies_.angular_velocity[b]);
+  return e;
+}
+
+// Energy the scene can supply: kinetic energy now, potential energy above the lowest body, the
+// kinetic energy every body would have at the fastest moving wall's speed, and a floor of each
+// body falling one largest-sphere diameter (so a resting bed has a non-zero budget).
+double Simulation::energy_budget_j() const {
+  const Vec3 g = options_.gravity_m_s2;
+  const double gmag = g.norm();
+  double h_min = std::numeric_limits<double>::infinity(), m_total = 0.0, mh = 0.0, r_max = 0.0;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const double h = gmag > 0.0 ? -g.dot(bodies_.position_m[b]) / gmag : 0.0;
+    h_min = std::min(h_min, h);
+    m_total += bodies_.mass_kg[b];
+    mh += bodies_.mass_kg[b] * h;
+  }
+  for (double r : spheres_.radius_m) r_max = std::max(r_max, r);
+  double v_wall = 0.0;
+  for (const Wall& w : walls_)
+    if (w.motion) v_wall = std::max(v_wall, w.motion->max_speed_m_s(1.0));
+  const double pe = bodies_.size() > 0 ? gmag * (mh - m_total * h_min) : 0.0;
+  return kinetic_energy_j() + pe + 0.5 * m_total * v_wall * v_wall +
+         m_total * std::max(gmag, 1.0) * 2.0 * r_max;
+}
+
+void Simulation::fail(RunStatus s, std::int64_t body, std::string message) {
+  failure_.status = s;
+  failure_.step = step_;
+  failure_.time_s = time_s_;
+  failure_.body = body;
+  std::ostringstream m;
+  m << "step " << step_ << " (t = " << time_s_ << " s)";
+  if (body >= 0) m << ", body " << body;
+  m << ": " << message;
+  failure_.message = m.str();
+  if (log_) log_(failure_.message);
+}
+
+bool Simulation::check_guards() {
+  if (failure_.status != RunStatus::ok) return false;
+  const std::size_t nb = bodies_.size();
+  for (std::size_t b = 0; b < nb; ++b) {
+    const double probe = bodies_.position_m[b].sum() + bodies_.velocity_m_s[b].sum() +
+                         bodies_.angular_momentum[b].sum();
+    if (!std::isfinite(probe)) {
+      fail(RunStatus::non_finite, static_cast<std::int64_t>(b),
+           "position or velocity is not finite; likely cause: time step above the stable limit "
+           "for the stiffest contact (lower dt_s or rayleigh_fraction)");
+      return false;
+    }
+  }
+  const int every = std::max(1, options_.guards.check_interval);
+  if (step_ % static_cast<std::uint64_t>(every) == 0) {
+    const double ke = kinetic_energy_j();
+    const double limit = options_.guards.max_energy_factor * reference_energy_j_;
+    if (ke > limit) {
+      std::size_t worst = 0;
+      double worst_e = -1.0;
+      for (std::size_t b = 0; b < nb; ++b) {
+        const double e = bodies_.mass_kg[b] * bodies_.velocity_m_s[b].squaredNorm();
+        if (e > worst_e) { worst_e = e; worst = b; }
+      }
+      std::ostringstream m;
+      m << "kinetic energy " << ke << " J exceeds " << options_.guards.max_energy_factor
+        << " x the energy the scene can supply (" << reference_energy_j_
+        << " J); likely cause: time step above the stable limit (lower dt_s) or interpenetrating "
+           "initial positions";
+      fail(RunStatus::energy_runaway, static_cast<std::int64_t>(worst), m.str());
+      return false;
+    }
+  }
+  return failure_.status == RunStatus::ok;
+}
+
+}  // namespace seedcal

@@ -1,0 +1,114 @@
+#pragma once
+// A Simulation is a value that owns its whole state: bodies, spheres, walls, neighbour lists and
+// contact history, options, random generator and log sink. No global state, so many simulations
+// can run in one process (DESIGN.md, STYLE.md).
+#include <cstdint>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "solver/broadphase/verlet_list.hpp"
+#include "solver/contact/contact_model.hpp"
+#include "solver/core/body_state.hpp"
+#include "solver/core/materials.hpp"
+#include "solver/sim/body_def.hpp"
+#include "solver/sim/guards.hpp"
+#include "solver/walls/wall.hpp"
+#include "solver/walls/wall_contact_list.hpp"
+
+namespace seedcal {
+
+struct SimulationOptions {
+  ContactOptions contact;
+  Vec3 gravity_m_s2 = Vec3(0.0, 0.0, -9.81);
+  double dt_s = 0.0;    // must be set (see sim/time_step.hpp and choose_time_step())
+  double skin_m = 0.0;  // Verlet skin; 0: 10 % of the largest sphere diameter
+  int threads = 1;      // OpenMP threads inside this simulation
+  GuardOptions guards;
+  bool track_body_contacts = false;  // count sphere-level contacts per body each step
+  std::uint64_t seed = 0;
+};
+
+// Per-step contact statistics (always collected; maxima are order-independent).
+struct StepStats {
+  std::size_t sphere_contacts = 0;  // touching sphere-sphere pairs
+  std::size_t wall_contacts = 0;    // touching sphere-wall pairs
+  double max_overlap_m = 0.0;
+  double max_normal_force_n = 0.0;
+  int max_body_contacts = 0;        // with track_body_contacts: most sphere contacts of one body
+};
+
+class Simulation {
+ public:
+  Simulation(InteractionTable table, SimulationOptions options);
+
+  // Building the world. Bodies get consecutive ids in the order they are added.
+  std::uint32_t add_body(const BodyDef& def);
+  std::size_t add_wall(Wall wall);
+  void set_log(std::function<void(const std::string&)> sink) { log_ = std::move(sink); }
+
+  // Advances one step. Returns false (and fills failure()) when a guard stops the run.
+  bool step();
+  // Advances up to n steps; stops early on a guard failure.
+  bool run(std::uint64_t n);
+
+  const BodyState& bodies() const { return bodies_; }
+  BodyState& bodies() { return bodies_; }
+  const SphereState& spheres() const { return spheres_; }
+  const std::vector<Wall>& walls() const { return walls_; }
+  std::vector<Wall>& walls() { return walls_; }
+  const InteractionTable& table() const { return table_; }
+  const SimulationOptions& options() const { return options_; }
+  const StepStats& stats() const { return stats_; }
+  const std::vector<int>& body_contacts() const { return body_contacts_; }
+  const GuardFailure& failure() const { return failure_; }
+  double time_s() const { return time_s_; }
+  std::uint64_t step_count() const { return step_; }
+  std::size_t neighbour_builds() const { return pairs_.builds(); }
+  std::mt19937_64& rng() { return rng_; }
+
+  double kinetic_energy_j() const;
+  // Smallest Rayleigh time step over all spheres (sim/time_step.hpp), s.
+  double rayleigh_time_step_s() const;
+  // Sets a body's velocity and angular velocity (world frame).
+  void set_body_motion(std::uint32_t b, const Vec3& v, const Vec3& w);
+
+ private:
+  friend struct ForceKernel;
+  void update_sphere_positions();
+  void ensure_ready();
+  void compute_forces();
+  bool check_guards();
+  double energy_budget_j() const;
+  void rebuild_lists();
+  bool walls_moved_beyond_skin() const;
+  void fail(RunStatus s, std::int64_t body, std::string message);
+
+  InteractionTable table_;
+  SimulationOptions options_;
+  BodyState bodies_;
+  SphereState spheres_;
+  std::vector<Wall> walls_;
+  VerletList pairs_;
+  WallContactList wall_pairs_;
+  StepStats stats_;
+  std::vector<int> body_contacts_;
+  std::vector<int> sphere_group_touch_, wall_group_touch_;
+  // Per-thread force/torque accumulators, reduced in thread order (deterministic for a given
+  // thread count).
+  std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
+  std::vector<std::vector<Vec3>> thread_wall_force_, thread_wall_torque_;
+  std::vector<WallPose> wall_pose_at_build_;
+  GuardFailure failure_;
+  std::function<void(const std::string&)> log_;
+  std::mt19937_64 rng_;
+  double time_s_ = 0.0;
+  std::uint64_t step_ = 0;
+  double skin_m_ = 0.0;
+  double reference_energy_j_ = -1.0;  // < 0: recompute
+  bool ready_ = false;
+  bool forces_valid_ = false;
+};
+
+}  // namespace seedcal
