@@ -1,0 +1,47 @@
+#pragma once
+// Small worlds shared by the physics tests: one material, one interaction, spheres and planes.
+#include <memory>
+#include <vector>
+
+#include "solver/sim/simulation.hpp"
+
+namespace seedcal::testing {
+
+struct MaterialSpec {
+  double density_kg_m3 = 2800.0;
+  double youngs_modulus_pa = 4.8e10;
+  double poisson_ratio = 0.2;
+  double restitution = 0.9;
+  double static_friction = 0.35;
+  double rolling_friction = 0.0;
+};
+
+// Material 0 for the particles; material 1 for walls (its own modulus, same interaction
+// coefficients with material 0).
+inline InteractionTable make_table(const MaterialSpec& m, double wall_modulus_pa = -1.0,
+                                   double wall_poisson = -1.0) {
+  std::vector<Material> mats = {
+      {"particle", m.density_kg_m3, m.youngs_modulus_pa, m.poisson_ratio},
+      {"wall", 7800.0, wall_modulus_pa > 0 ? wall_modulus_pa : m.youngs_modulus_pa,
+       wall_poisson >= 0 ? wall_poisson : m.poisson_ratio}};
+  std::vector<Interaction> its = {
+      {"pp", 0, 0, m.restitution, m.static_friction, m.rolling_friction},
+      {"pw", 0, 1, m.restitution, m.static_friction, m.rolling_friction}};
+  return InteractionTable(mats, its);
+}
+
+inline Wall plane_wall(const Vec3& point, const Vec3& normal) {
+  Wall w;
+  w.name = "plane";
+  w.shape = std::make_shared<PlaneShape>(normal);
+  w.material = 1;
+  w.pose.origin_m = point;
+  return w;
+}
+
+// Effective modulus of two materials: 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.
+inline double e_star(double e1, double nu1, double e2, double nu2) {
+  return 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+}
+
+}  // namespace seedcal::testing
