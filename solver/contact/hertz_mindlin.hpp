@@ -71,10 +71,14 @@ inline ContactForce hertz_mindlin(const PairConstants& c, const ContactKinematic
   const double ft_max = c.static_friction * std::abs(fn);
   const double ft_mag = ft.norm();
   if (ft_mag > ft_max) {
-    // Sliding: cap at the Coulomb limit and reset the spring so that it alone carries the limit
-    // force along the current direction (LIGGGHTS / LAMMPS GRANULAR "mindlin" behaviour).
+    // Sliding: cap the total at the Coulomb limit and reset the spring so that the spring alone
+    // carries the limit force (Thornton, Cummins & Cleary 2011, Powder Technol. 210, 189, sec. 3).
+    // LIGGGHTS and LAMMPS instead set the spring to carry the limit force plus the damping force,
+    // -(F_lim + c_t v_t) / S_t; early in an impact, where the damping term alone exceeds the limit,
+    // that stretches the spring backwards and the contact then under-shoots Coulomb friction (8 %
+    // too little tangential impulse for e = 0.45 in tests/physics/oblique_impact_test.cpp).
     ft *= (ft_mag > 0.0 ? ft_max / ft_mag : 0.0);
-    tangential_disp_m = st > 0.0 ? Vec3(-(ft + ct * vt) / st) : Vec3::Zero();
+    tangential_disp_m = st > 0.0 ? Vec3(-ft / st) : Vec3::Zero();
   }
   return {-fn * k.normal + ft, fn, sn};
 }
