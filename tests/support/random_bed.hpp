@@ -1,0 +1,42 @@
+#pragma once
+// A loose bed of spheres on a jittered lattice in a box of five planes, with random velocities
+// drawn from the simulation's own generator (deterministic for a seed).
+#include <random>
+
+#include "tests/support/worlds.hpp"
+
+namespace seedcal::testing {
+
+struct BedSpec {
+  int nx = 8, ny = 8, nz = 8;
+  double radius_m = 0.002;
+  double spacing = 2.2;     // lattice pitch in radii
+  double jitter = 0.05;     // position jitter in radii
+  double speed_m_s = 0.5;   // random velocity scale
+};
+
+inline void add_box_walls(Simulation& sim, double lx, double ly) {
+  sim.add_wall(plane_wall(Vec3::Zero(), Vec3::UnitZ()));
+  sim.add_wall(plane_wall(Vec3::Zero(), Vec3::UnitX()));
+  sim.add_wall(plane_wall(Vec3(lx, 0, 0), -Vec3::UnitX()));
+  sim.add_wall(plane_wall(Vec3::Zero(), Vec3::UnitY()));
+  sim.add_wall(plane_wall(Vec3(0, ly, 0), -Vec3::UnitY()));
+}
+
+inline void add_random_bed(Simulation& sim, const BedSpec& b, double density_kg_m3) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto& rng = sim.rng();
+  const double pitch = b.spacing * b.radius_m;
+  for (int k = 0; k < b.nz; ++k)
+    for (int j = 0; j < b.ny; ++j)
+      for (int i = 0; i < b.nx; ++i) {
+        BodyDef d = sphere_body(b.radius_m, density_kg_m3, 0);
+        d.position_m = Vec3((i + 0.5) * pitch, (j + 0.5) * pitch, (k + 0.5) * pitch) +
+                       b.jitter * b.radius_m * Vec3(u(rng), u(rng), u(rng));
+        d.velocity_m_s = b.speed_m_s * Vec3(u(rng), u(rng), u(rng));
+        sim.add_body(d);
+      }
+  add_box_walls(sim, b.nx * pitch, b.ny * pitch);
+}
+
+}  // namespace seedcal::testing
