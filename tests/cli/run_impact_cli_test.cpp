@@ -1,0 +1,83 @@
+// End-to-end: `seedcal run` on impact scenes: exit codes, metrics keys, --set, bad input.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "tests/support/cli.hpp"
+
+namespace seedcal {
+namespace {
+
+using testing::run_cli;
+
+std::string example() { return testing::source_dir() + "/data/scenes/examples/impact.toml"; }
+
+TEST(RunImpactCli, WritesMetricsWithEveryRequiredKey) {
+  const std::string out = testing::scratch_dir("impact");
+  const auto r = run_cli("run " + example() + " --out " + out + " --threads 1 --seed 3");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(testing::read_text(out + "/metrics.json"));
+  for (const char* k : {"contact_duration_s", "max_overlap_m", "max_normal_force_n", "max_contact_points",
+                        "final", "cpu_seconds", "wall_seconds", "steps", "bodies", "spheres",
+                        "stop_reason", "provenance"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  ASSERT_EQ(j["final"].size(), 2u);
+  for (const auto& b : j["final"])
+    for (const char* k : {"position_m", "velocity_m_s", "angular_velocity_rad_s"}) EXPECT_TRUE(b.contains(k));
+  EXPECT_EQ(j["bodies"], 2);
+  EXPECT_EQ(j["provenance"]["seed"], 3);
+  // Restitution 0.9 in the example: each sphere leaves at 4.5 m/s (0.1 %: dt = t_c / 4700).
+  EXPECT_NEAR(j["final"][1]["velocity_m_s"][0].get<double>(), 4.5, 4.5e-3);
+  EXPECT_EQ(j["max_contact_points"], 1);
+}
+
+TEST(RunImpactCli, SetOverridesANamedInteraction) {
+  const std::string out = testing::scratch_dir("impact-set");
+  const auto r = run_cli("run " + example() + " --out " + out + " --threads 1 --set glass_glass.restitution=0.5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(testing::read_text(out + "/metrics.json"));
+  EXPECT_NEAR(j["final"][1]["velocity_m_s"][0].get<double>(), 2.5, 2.5e-3);
+}
+
+TEST(RunImpactCli, TimeStepAboveTheStableLimitIsRefused) {
+  const std::string out = testing::scratch_dir("impact-dt");
+  const auto r = run_cli("run " + example() + " --out " + out + " --set dt_s=1e-4");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("dt_s"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("stable limit"), std::string::npos) << r.output;
+  // ... and runs when forced (then it is the user's responsibility).
+  const auto f = run_cli("run " + example() + " --out " + out + " --set dt_s=2e-6 --set force_dt=true");
+  EXPECT_NE(f.exit_code, 2) << f.output;
+}
+
+TEST(RunImpactCli, BadInputNamesFileLineKeyValueAndRange) {
+  const std::string dir = testing::scratch_dir("impact-bad");
+  std::string text = testing::read_text(example());
+  text = std::regex_replace(text, std::regex("poisson_ratio = 0.2"), "poisson_ratio = 0.7");
+  text = std::regex_replace(text, std::regex("restitution = 0.9"), "restitusion = 0.9");
+  testing::write_text(dir + "/bad.toml", text);
+  const auto r = run_cli("run " + dir + "/bad.toml --out " + dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("bad.toml:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("materials.glass.poisson_ratio = 0.7: must be in [0, 0.5]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("did you mean \"restitution\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("interaction[0].restitution is required"), std::string::npos) << r.output;
+}
+
+TEST(RunImpactCli, MissingFileAndUnknownKindExitTwo) {
+  EXPECT_EQ(run_cli("run /nonexistent/scene.toml").exit_code, 2);
+  const std::string dir = testing::scratch_dir("impact-kind");
+  testing::write_text(dir + "/k.toml", "kind = \"impakt\"\n");
+  const auto r = run_cli("run " + dir + "/k.toml --out " + dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("did you mean \"impact\""), std::string::npos) << r.output;
+}
+
+TEST(RunImpactCli, HelpOnEveryLevel) {
+  EXPECT_EQ(run_cli("--help").exit_code, 0);
+  EXPECT_EQ(run_cli("run --help").exit_code, 0);
+}
+
+}  // namespace
+}  // namespace seedcal
