@@ -23,7 +23,7 @@ struct Chunk {
 
 }  // namespace
 
-void VerletList::build(const SphereState& spheres, double skin_m, bool keep_rolling) {
+void VerletList::build(const SphereState& spheres, double skin_m, bool keep_rolling, int threads) {
   const std::size_t n = spheres.size();
   skin_m_ = skin_m;
   double r_max = 0.0;
@@ -35,10 +35,7 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
 
   // Spheres of one body are contiguous and bodies are ordered, so a sphere range per chunk maps
   // to a body range; chunks never split a body.
-  int threads = 1;
-#ifdef _OPENMP
-  threads = omp_get_max_threads();
-#endif
+  threads = std::max(1, threads);
   std::vector<std::size_t> bounds(static_cast<std::size_t>(threads) + 1, n);
   bounds[0] = 0;
   for (int t = 1; t < threads; ++t) {
@@ -48,7 +45,7 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
   }
   std::vector<Chunk> chunks(static_cast<std::size_t>(threads));
 
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) if (threads > 1)
   {
     int t = 0;
 #ifdef _OPENMP

@@ -16,8 +16,9 @@ namespace seedcal {
 
 class VerletList {
  public:
-  // `keep_rolling`: allocate rolling-spring history (EPSD only).
-  void build(const SphereState& spheres, double skin_m, bool keep_rolling);
+  // `keep_rolling`: allocate rolling-spring history (EPSD only). The result does not depend on
+  // `threads` (chunks are concatenated in body order).
+  void build(const SphereState& spheres, double skin_m, bool keep_rolling, int threads = 1);
   bool needs_rebuild(const SphereState& spheres) const;
 
   std::size_t pair_count() const { return si_.size(); }

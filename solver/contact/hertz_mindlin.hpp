@@ -40,16 +40,17 @@ struct ContactForce {
 // sqrt(5/6), the Hertz-Mindlin damping prefactor.
 inline constexpr double kSqrtFiveSixths = 0.91287092917527685576;
 
-inline ContactForce hertz_mindlin(const PairConstants& c, const ContactKinematics& k,
-                                  Vec3& tangential_disp_m, double dt_s, double damping_scale,
-                                  bool clip_attractive) {
+[[gnu::always_inline]] inline ContactForce hertz_mindlin(const PairConstants& c,
+                                                        const ContactKinematics& k,
+                                                        Vec3& tangential_disp_m, double dt_s,
+                                                        double damping_scale, bool clip_attractive) {
   const double sqrt_rd = std::sqrt(k.r_star_m * k.overlap_m);
   const double sn = 2.0 * c.e_star_pa * sqrt_rd;
-  const double st = 8.0 * c.g_star_pa * sqrt_rd;
+  const double st = sn * c.sqrt_tangential_ratio * c.sqrt_tangential_ratio;  // 8 G* sqrt(R* d)
   // -2 sqrt(5/6) beta >= 0 because beta <= 0.
   const double damp = -2.0 * kSqrtFiveSixths * c.beta * damping_scale;
   const double cn = damp * std::sqrt(sn * k.m_star_kg);
-  const double ct = damp * std::sqrt(st * k.m_star_kg);
+  const double ct = cn * c.sqrt_tangential_ratio;  // = damp sqrt(S_t m*)
 
   const double vn = k.v_rel_m_s.dot(k.normal);  // > 0: approaching
   const Vec3 vt = k.v_rel_m_s - vn * k.normal;
@@ -60,24 +61,27 @@ inline ContactForce hertz_mindlin(const PairConstants& c, const ContactKinematic
 
   // Keep the tangential spring in the current tangent plane, preserving its length (the contact
   // frame rotates with the pair; Luding 2008, "Cohesive, frictional powders", sec. 2.2.3).
-  const double len0 = tangential_disp_m.norm();
-  tangential_disp_m -= tangential_disp_m.dot(k.normal) * k.normal;
-  const double len1 = tangential_disp_m.norm();
-  if (len1 > 0.0) tangential_disp_m *= len0 / len1;
+  const double len0_sq = tangential_disp_m.squaredNorm();
+  const double along = tangential_disp_m.dot(k.normal);
+  if (along != 0.0) {
+    tangential_disp_m -= along * k.normal;
+    const double len1_sq = len0_sq - along * along;
+    if (len1_sq > 0.0) tangential_disp_m *= std::sqrt(len0_sq / len1_sq);
+  }
   tangential_disp_m += vt * dt_s;
 
   // Tangential force on i opposes i's slip relative to j.
   Vec3 ft = -st * tangential_disp_m - ct * vt;
   const double ft_max = c.static_friction * std::abs(fn);
-  const double ft_mag = ft.norm();
-  if (ft_mag > ft_max) {
+  const double ft_sq = ft.squaredNorm();
+  if (ft_sq > ft_max * ft_max) {
     // Sliding: cap the total at the Coulomb limit and reset the spring so that the spring alone
-    // carries the limit force (Thornton, Cummins & Cleary 2011, Powder Technol. 210, 189, sec. 3).
-    // LIGGGHTS and LAMMPS instead set the spring to carry the limit force plus the damping force,
+    // carries the limit force; the tangential damper then acts only while the contact sticks, and
+    // the force is continuous when sliding stops. LIGGGHTS and LAMMPS instead set the spring to carry the limit force plus the damping force,
     // -(F_lim + c_t v_t) / S_t; early in an impact, where the damping term alone exceeds the limit,
     // that stretches the spring backwards and the contact then under-shoots Coulomb friction (8 %
     // too little tangential impulse for e = 0.45 in tests/physics/oblique_impact_test.cpp).
-    ft *= (ft_mag > 0.0 ? ft_max / ft_mag : 0.0);
+    ft *= ft_max / std::sqrt(ft_sq);
     tangential_disp_m = st > 0.0 ? Vec3(-ft / st) : Vec3::Zero();
   }
   return {-fn * k.normal + ft, fn, sn};

@@ -21,6 +21,7 @@ struct BodyState {
   std::vector<double> mass_kg;
   std::vector<double> inv_mass;
   std::vector<Vec3> principal_inertia;     // kg m2, body frame
+  std::vector<Vec3> inv_inertia;           // 1 / principal_inertia
   std::vector<std::uint8_t> isotropic;     // 1 when the three principal moments are equal
   std::vector<std::uint32_t> first_sphere; // spheres of body b: [first_sphere[b], first_sphere[b+1])
   std::vector<Vec3> force_n;               // accumulated this step, world
@@ -40,11 +41,11 @@ struct SphereState {
 };
 
 // World angular velocity from world angular momentum: w = R I^-1 R^T L.
-inline Vec3 angular_velocity_from_momentum(const Quat& q, const Vec3& inertia, const Vec3& L,
+inline Vec3 angular_velocity_from_momentum(const Quat& q, const Vec3& inv_inertia, const Vec3& L,
                                            bool isotropic) {
-  if (isotropic) return L / inertia.x();
+  if (isotropic) return L * inv_inertia.x();
   const Vec3 pi = q.conjugate() * L;
-  return q * Vec3(pi.x() / inertia.x(), pi.y() / inertia.y(), pi.z() / inertia.z());
+  return q * Vec3(pi.cwiseProduct(inv_inertia));
 }
 
 // World angular momentum from world angular velocity: L = R I R^T w.

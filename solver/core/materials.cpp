@@ -28,6 +28,8 @@ InteractionTable::InteractionTable(std::vector<Material> materials,
     c.g_star_pa = 1.0 / ((2.0 - a.poisson_ratio) / a.shear_modulus_pa() +
                          (2.0 - b.poisson_ratio) / b.shear_modulus_pa());
     c.beta = damping_beta(it.restitution);
+    // S_t / S_n = 8 G* sqrt(R* d) / (2 E* sqrt(R* d)) = 4 G* / E*.
+    c.sqrt_tangential_ratio = std::sqrt(4.0 * c.g_star_pa / c.e_star_pa);
     c.static_friction = it.static_friction;
     c.rolling_friction = it.rolling_friction;
     c.restitution = it.restitution;

@@ -38,6 +38,7 @@ struct PairConstants {
   double static_friction = 0.0;
   double rolling_friction = 0.0;
   double restitution = 1.0;
+  double sqrt_tangential_ratio = 0.0;  // sqrt(S_t / S_n) = sqrt(4 G* / E*), constant per pair
   bool defined = false;  // false: the pair has no interaction and must not touch
 };
 

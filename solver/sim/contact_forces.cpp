@@ -56,8 +56,19 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   wall_group_touch.assign(wgroups, 0);
 
   std::vector<ThreadStats> tstats(static_cast<std::size_t>(threads));
+  for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
+  // CDT needs each body's spin direction at every contact: computed once per body here.
+  std::vector<Vec3>& spin_dir = s.spin_direction_;
+  if constexpr (RM == RollingModel::cdt) {
+    spin_dir.resize(nb);
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+    for (std::size_t b = 0; b < nb; ++b) {
+      const double w = B.angular_velocity[b].norm();
+      spin_dir[b] = w > 1e-12 ? Vec3(B.angular_velocity[b] / w) : Vec3::Zero();
+    }
+  }
 
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) if (threads > 1)
   {
     int t = 0;
 #ifdef _OPENMP
@@ -100,7 +111,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         }
         ++touching;
         const double dist = std::sqrt(dist2);
-        const Vec3 normal = dist > 0.0 ? Vec3(d / dist) : Vec3::UnitZ();
+        const Vec3 normal = dist > 0.0 ? Vec3(d * (1.0 / dist)) : Vec3::UnitZ();
         const double overlap = rs - dist;
         const std::uint32_t bi = S.body[i], bj = S.body[j];
         const Vec3 cp = S.position_m[i] + (ri - 0.5 * overlap) * normal;
@@ -111,15 +122,15 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const Vec3 vrel = (B.velocity_m_s[bi] + wi.cross(rci)) - (B.velocity_m_s[bj] + wj.cross(rcj));
         const PairConstants& pc = table.pair(S.material[i], S.material[j]);
         const double mi = B.mass_kg[bi], mj = B.mass_kg[bj];
-        const ContactKinematics kin{normal, overlap, ri * rj / rs, mi * mj / (mi + mj), vrel};
+        const ContactKinematics kin{normal, overlap, ri * rj / rs, 1.0 / (B.inv_mass[bi] + B.inv_mass[bj]), vrel};
         const ContactForce cf = hertz_mindlin(pc, kin, tang[k], dt, scale, clip);
         F[bi] += cf.force_on_i_n;
         F[bj] -= cf.force_on_i_n;
         T[bi] += rci.cross(cf.force_on_i_n);
         T[bj] -= rcj.cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
-          T[bi] += cdt_torque(pc.rolling_friction, cf.normal_force_n, ri - 0.5 * overlap, wi);
-          T[bj] += cdt_torque(pc.rolling_friction, cf.normal_force_n, rj - 0.5 * overlap, wj);
+          T[bi] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, ri - 0.5 * overlap, spin_dir[bi]);
+          T[bj] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, rj - 0.5 * overlap, spin_dir[bj]);
         } else if constexpr (RM == RollingModel::epsd) {
           const double ii = B.principal_inertia[bi].mean() + mi * rci.squaredNorm();
           const double ij = B.principal_inertia[bj].mean() + mj * rcj.squaredNorm();
@@ -129,7 +140,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           T[bi] += tau;
           T[bj] -= tau;
         }
-        st.note(overlap, cf.normal_force_n, overlap / std::min(ri, rj), bi);
+        st.note(overlap, cf.normal_force_n, std::min(ri, rj), bi);
       }
       sphere_group_touch[g] = touching;
       st.sphere_contacts += static_cast<std::size_t>(touching);
@@ -180,7 +191,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         WF[ww[a]] -= cf.force_on_i_n;
         WT[ww[a]] -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
-          T[b] += cdt_torque(pc.rolling_friction, cf.normal_force_n, hit.distance, w);
+          T[b] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, hit.distance, spin_dir[b]);
         } else if constexpr (RM == RollingModel::epsd) {
           const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
           const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
@@ -189,7 +200,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           T[b] += tau;
           WT[ww[a]] -= tau;
         }
-        st.note(overlap, cf.normal_force_n, overlap / r, b);
+        st.note(overlap, cf.normal_force_n, r, b);
       }
       wall_group_touch[g] = touching;
       st.wall_contacts += static_cast<std::size_t>(touching);

@@ -13,12 +13,18 @@ class Simulation;
 struct ThreadStats {
   std::size_t sphere_contacts = 0, wall_contacts = 0;
   double max_overlap = 0.0, max_fn = 0.0;
-  double worst_ratio = 0.0;  // overlap / smaller radius
+  double worst_ratio = 0.0;  // overlap / smaller radius, recorded only above `ratio_limit`
   std::int64_t worst_body = -1;
-  void note(double overlap, double fn, double ratio, std::int64_t body) {
+  double ratio_limit = 0.5;
+  // Called for every touching pair: two compares on the hot path, the division only when the
+  // overlap guard is about to trip.
+  void note(double overlap, double fn, double r_min, std::int64_t body) {
     max_overlap = std::max(max_overlap, overlap);
     max_fn = std::max(max_fn, fn);
-    if (ratio > worst_ratio) { worst_ratio = ratio; worst_body = body; }
+    if (overlap > ratio_limit * r_min) {
+      const double ratio = overlap / r_min;
+      if (ratio > worst_ratio) { worst_ratio = ratio; worst_body = body; }
+    }
   }
 };
 

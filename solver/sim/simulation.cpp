@@ -1,6 +1,7 @@
 #include "solver/sim/simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -51,6 +52,7 @@ std::uint32_t Simulation::add_body(const BodyDef& def) {
   const bool iso = std::abs(I.x() - I.y()) <= 1e-12 * I.x() && std::abs(I.x() - I.z()) <= 1e-12 * I.x();
   bodies_.isotropic.push_back(iso ? 1 : 0);
   bodies_.principal_inertia.push_back(I);
+  bodies_.inv_inertia.push_back(I.cwiseInverse());
   bodies_.angular_momentum.push_back(
       angular_momentum_from_velocity(bodies_.orientation.back(), I, def.angular_velocity_rad_s));
   bodies_.angular_velocity.push_back(def.angular_velocity_rad_s);
@@ -99,7 +101,7 @@ double Simulation::rayleigh_time_step_s() const {
 
 void Simulation::update_sphere_positions() {
   const std::size_t n = spheres_.size();
-#pragma omp parallel for schedule(static) num_threads(options_.threads)
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t b = spheres_.body[i];
     const Vec3& off = spheres_.offset_body_m[i];
@@ -128,7 +130,7 @@ void Simulation::ensure_ready() {
 void Simulation::rebuild_lists() {
   // Rolling-spring history exists only for EPSD: no rolling history when it is not needed.
   const bool rolling_history = options_.contact.rolling == RollingModel::epsd;
-  pairs_.build(spheres_, skin_m_, rolling_history);
+  pairs_.build(spheres_, skin_m_, rolling_history, options_.threads);
   wall_pairs_.build(spheres_, walls_, skin_m_, rolling_history);
   wall_pose_at_build_.clear();
   for (const Wall& w : walls_) wall_pose_at_build_.push_back(w.pose);
@@ -146,14 +148,27 @@ bool Simulation::walls_moved_beyond_skin() const {
   return false;
 }
 
+namespace {
+// Adds the time since `t0` to `acc` and restarts `t0`, when profiling.
+inline void lap(bool on, std::chrono::steady_clock::time_point& t0, double& acc) {
+  if (!on) return;
+  const auto t1 = std::chrono::steady_clock::now();
+  acc += std::chrono::duration<double>(t1 - t0).count();
+  t0 = t1;
+}
+}  // namespace
+
 void Simulation::compute_forces() {
   ThreadStats total;
+  const bool prof = options_.profile;
+  auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   run_force_kernel(*this, options_.contact.normal, options_.contact.rolling, sphere_group_touch_,
                    wall_group_touch_, total);
+  lap(prof, t0, profile_.contact_s);
   const std::size_t nb = bodies_.size();
   const std::size_t nt = thread_force_.size();
   const Vec3 g = options_.gravity_m_s2;
-#pragma omp parallel for schedule(static) num_threads(options_.threads)
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t b = 0; b < nb; ++b) {
     Vec3 f = bodies_.mass_kg[b] * g, tq = Vec3::Zero();
     for (std::size_t t = 0; t < nt; ++t) {
@@ -200,6 +215,7 @@ void Simulation::compute_forces() {
     fail(RunStatus::deep_overlap, total.worst_body, m.str());
   }
   forces_valid_ = true;
+  lap(prof, t0, profile_.reduce_s);
 }
 
 bool Simulation::step() {
@@ -207,16 +223,18 @@ bool Simulation::step() {
   ensure_ready();
   const double dt = options_.dt_s;
   const std::size_t nb = bodies_.size();
+  const bool prof = options_.profile;
+  auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   // Velocity Verlet, first half: kick with the forces of the previous step, then drift.
-#pragma omp parallel for schedule(static) num_threads(options_.threads)
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t b = 0; b < nb; ++b) {
     bodies_.velocity_m_s[b] += (0.5 * dt * bodies_.inv_mass[b]) * bodies_.force_n[b];
     bodies_.angular_momentum[b] += (0.5 * dt) * bodies_.torque_n_m[b];
     bodies_.position_m[b] += dt * bodies_.velocity_m_s[b];
     free_rotation_step(bodies_.orientation[b], bodies_.angular_momentum[b],
-                       bodies_.principal_inertia[b], bodies_.isotropic[b] != 0, dt);
+                       bodies_.inv_inertia[b], bodies_.isotropic[b] != 0, dt);
     bodies_.angular_velocity[b] = angular_velocity_from_momentum(
-        bodies_.orientation[b], bodies_.principal_inertia[b], bodies_.angular_momentum[b],
+        bodies_.orientation[b], bodies_.inv_inertia[b], bodies_.angular_momentum[b],
         bodies_.isotropic[b] != 0);
   }
   for (Wall& w : walls_)
@@ -224,16 +242,31 @@ bool Simulation::step() {
   time_s_ += dt;
   ++step_;
   update_sphere_positions();
+  lap(prof, t0, profile_.integrate_s);
   if (pairs_.needs_rebuild(spheres_) || walls_moved_beyond_skin()) rebuild_lists();
+  lap(prof, t0, profile_.neighbour_s);
   compute_forces();
-  // Second half kick with the new forces.
-#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  if (prof) t0 = std::chrono::steady_clock::now();
+  // Second half kick with the new forces; the NaN guard rides along (lowest bad body reported).
+  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
+    reduction(min : first_bad)
   for (std::size_t b = 0; b < nb; ++b) {
     bodies_.velocity_m_s[b] += (0.5 * dt * bodies_.inv_mass[b]) * bodies_.force_n[b];
     bodies_.angular_momentum[b] += (0.5 * dt) * bodies_.torque_n_m[b];
     bodies_.angular_velocity[b] = angular_velocity_from_momentum(
-        bodies_.orientation[b], bodies_.principal_inertia[b], bodies_.angular_momentum[b],
+        bodies_.orientation[b], bodies_.inv_inertia[b], bodies_.angular_momentum[b],
         bodies_.isotropic[b] != 0);
+    const double probe = bodies_.position_m[b].sum() + bodies_.velocity_m_s[b].sum() +
+                         bodies_.angular_momentum[b].sum();
+    if (!std::isfinite(probe)) first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+  }
+  lap(prof, t0, profile_.integrate_s);
+  if (first_bad != std::numeric_limits<std::int64_t>::max() && failure_.status == RunStatus::ok) {
+    fail(RunStatus::non_finite, first_bad,
+         "position or velocity is not finite; likely cause: time step above the stable limit "
+         "for the stiffest contact (lower dt_s or rayleigh_fraction)");
+    return false;
   }
   return check_guards();
 }
@@ -290,16 +323,6 @@ void Simulation::fail(RunStatus s, std::int64_t body, std::string message) {
 bool Simulation::check_guards() {
   if (failure_.status != RunStatus::ok) return false;
   const std::size_t nb = bodies_.size();
-  for (std::size_t b = 0; b < nb; ++b) {
-    const double probe = bodies_.position_m[b].sum() + bodies_.velocity_m_s[b].sum() +
-                         bodies_.angular_momentum[b].sum();
-    if (!std::isfinite(probe)) {
-      fail(RunStatus::non_finite, static_cast<std::int64_t>(b),
-           "position or velocity is not finite; likely cause: time step above the stable limit "
-           "for the stiffest contact (lower dt_s or rayleigh_fraction)");
-      return false;
-    }
-  }
   const int every = std::max(1, options_.guards.check_interval);
   if (step_ % static_cast<std::uint64_t>(every) == 0) {
     const double ke = kinetic_energy_j();

@@ -27,6 +27,7 @@ struct SimulationOptions {
   int threads = 1;      // OpenMP threads inside this simulation
   GuardOptions guards;
   bool track_body_contacts = false;  // count sphere-level contacts per body each step
+  bool profile = false;              // accumulate wall time per phase of the step (StepProfile)
   std::uint64_t seed = 0;
 };
 
@@ -37,6 +38,14 @@ struct StepStats {
   double max_overlap_m = 0.0;
   double max_normal_force_n = 0.0;
   int max_body_contacts = 0;        // with track_body_contacts: most sphere contacts of one body
+};
+
+// Wall seconds spent in each phase of step(), accumulated when SimulationOptions::profile is on.
+struct StepProfile {
+  double integrate_s = 0.0;   // both half kicks, drift, rotation, wall motion, sphere positions
+  double neighbour_s = 0.0;   // rebuild check and rebuilds
+  double contact_s = 0.0;     // contact force kernel
+  double reduce_s = 0.0;      // per-thread force reduction, statistics
 };
 
 class Simulation {
@@ -63,9 +72,11 @@ class Simulation {
   const StepStats& stats() const { return stats_; }
   const std::vector<int>& body_contacts() const { return body_contacts_; }
   const GuardFailure& failure() const { return failure_; }
+  const StepProfile& profile() const { return profile_; }
   double time_s() const { return time_s_; }
   std::uint64_t step_count() const { return step_; }
   std::size_t neighbour_builds() const { return pairs_.builds(); }
+  std::size_t neighbour_pairs() const { return pairs_.pair_count(); }
   std::mt19937_64& rng() { return rng_; }
 
   double kinetic_energy_j() const;
@@ -95,12 +106,14 @@ class Simulation {
   StepStats stats_;
   std::vector<int> body_contacts_;
   std::vector<int> sphere_group_touch_, wall_group_touch_;
+  std::vector<Vec3> spin_direction_;  // CDT scratch: w / |w| per body
   // Per-thread force/torque accumulators, reduced in thread order (deterministic for a given
   // thread count).
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
   std::vector<std::vector<Vec3>> thread_wall_force_, thread_wall_torque_;
   std::vector<WallPose> wall_pose_at_build_;
   GuardFailure failure_;
+  StepProfile profile_;
   std::function<void(const std::string&)> log_;
   std::mt19937_64 rng_;
   double time_s_ = 0.0;
