@@ -44,9 +44,11 @@ void run_scene(const RunArgs& a, const GlobalOptions& g) {
     throw InputError(a.scene + ": kind = \"" + kind + "\": unknown scene kind");
   }
   SceneContext ctx{a.scene, a.out, g.resolved_threads(), g.seed};
+  const int repeats = static_cast<int>(root.integer("repeats", 1, 1000, 1));
+  diag->throw_if_any();
   nlohmann::json metrics;
   try {
-    metrics = it->second(root, ctx);
+    metrics = run_repeated(it->second, doc, a.scene, ctx, repeats);
   } catch (const SettingError& e) {
     throw InputError(a.scene + ": " + e.what());
   }

@@ -24,10 +24,19 @@ using SceneRunner = std::function<nlohmann::json(TomlReader& root, const SceneCo
 
 const std::map<std::string, SceneRunner>& scene_registry();
 
+// Runs a scene `repeats` times with seeds seed, seed + 1, ... (a fresh config read each time) and
+// aggregates: the index (named by the runner's "index_key") becomes the mean, with
+// "<index>_sd" (sample standard deviation) and "<index>_samples"; cpu_seconds, wall_seconds and
+// steps are summed; every run's own metrics are kept under "runs".
+nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
+                            const std::string& config_path, const SceneContext& ctx, int repeats);
+
+
 // The run-report part of every metrics object.
 void add_run_report(nlohmann::json& j, const RunReport& r);
 
 // Scene runners (one file each).
 nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx);
+nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx);
 
 }  // namespace seedcal

@@ -80,6 +80,7 @@ class Simulation {
   std::mt19937_64& rng() { return rng_; }
 
   double kinetic_energy_j() const;
+  double potential_energy_j() const;
   // Smallest Rayleigh time step over all spheres (sim/time_step.hpp), s.
   double rayleigh_time_step_s() const;
   // Sets a body's velocity and angular velocity (world frame).
@@ -120,6 +121,7 @@ class Simulation {
   std::uint64_t step_ = 0;
   double skin_m_ = 0.0;
   double reference_energy_j_ = -1.0;  // < 0: recompute
+  double reference_potential_j_ = 0.0;
   bool ready_ = false;
   bool forces_valid_ = false;
 };

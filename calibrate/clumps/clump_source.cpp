@@ -1,0 +1,78 @@
+#include "calibrate/clumps/clump_source.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace seedcal {
+
+std::string resolve_data_path(const std::string& path, const std::string& config_path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  if (p.is_absolute() || fs::exists(p)) return path;
+  const fs::path beside = fs::path(config_path).parent_path() / p;
+  if (fs::exists(beside)) return beside.string();
+  return path;
+}
+
+namespace {
+
+// "x y z r" per line, '#' comments.
+std::vector<SphereXYZR> read_text_clump(const std::string& path, TomlReader& reader,
+                                        const std::string& key) {
+  std::ifstream in(path);
+  std::vector<SphereXYZR> out;
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    std::istringstream ls(line);
+    double x, y, z, r;
+    if (!(ls >> x)) continue;
+    if (!(ls >> y >> z >> r) || !(r > 0.0)) {
+      reader.error(key, "= \"" + path + "\": line " + std::to_string(n) +
+                            " must be 'x y z r' in m with r > 0");
+      return {};
+    }
+    out.push_back({Vec3(x, y, z), r});
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<SphereXYZR> load_clump_spheres(const std::string& path, TomlReader& reader,
+                                           const std::string& key) {
+  std::ifstream probe(path);
+  if (!probe) {
+    reader.error(key, "= \"" + path + "\": cannot open the clump file");
+    return {};
+  }
+  std::vector<SphereXYZR> out;
+  if (path.size() >= 5 && path.substr(path.size() - 5) == ".toml") {
+    // Clump file: spheres_m = [[x, y, z, r], ...] in the body frame (see docs/clumps.md).
+    toml::value doc;
+    try {
+      doc = TomlReader::parse_file(path);
+    } catch (const InputError& e) {
+      reader.error(key, "= \"" + path + "\": " + e.what());
+      return {};
+    }
+    auto diag = std::make_shared<ConfigDiagnostics>();
+    diag->file = path;
+    TomlReader file(doc, "", diag);
+    for (const auto& row : file.number_rows("spheres_m", 4, 1, 100000))
+      out.push_back({Vec3(row[0], row[1], row[2]), row[3]});
+    for (const auto& s : out)
+      if (!(s.radius_m > 0.0)) diag->add(nullptr, "spheres_m", "every radius must be > 0");
+    for (const auto& msg : diag->problems) reader.diagnostics().problems.push_back(msg);
+  } else {
+    out = read_text_clump(path, reader, key);
+  }
+  if (out.empty()) reader.error(key, "= \"" + path + "\": the clump file holds no spheres");
+  return out;
+}
+
+}  // namespace seedcal

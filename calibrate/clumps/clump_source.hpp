@@ -1,0 +1,21 @@
+#pragma once
+// Where scenes get a clump's spheres from: a clump file (TOML written by `seedcal clump build`, or
+// a plain "x y z r" text file such as data/bench/clump9.txt), with paths relative to the config
+// that names them or to the working directory.
+#include <string>
+#include <vector>
+
+#include "calibrate/config/toml_reader.hpp"
+#include "solver/clump/mass_properties.hpp"
+
+namespace seedcal {
+
+// A path as written in a config: absolute, relative to the working directory, or relative to the
+// config file's directory (tried in that order).
+std::string resolve_data_path(const std::string& path, const std::string& config_path);
+
+// Spheres of a clump file in its own frame; problems are reported on `reader` under `key`.
+std::vector<SphereXYZR> load_clump_spheres(const std::string& path, TomlReader& reader,
+                                           const std::string& key);
+
+}  // namespace seedcal

@@ -1,0 +1,23 @@
+#pragma once
+// The particle a seed scene uses, from the [particle] table:
+//   [particle]
+//   material = "seed"                                   # a [materials.NAME]
+//   clump_file = "data/clumps/jinong1-manual-9.toml"    # a clump file (seedcal clump build), or
+//   spheres_m = [[x, y, z, r], ...]                     # spheres inline (any frame)
+// Mass properties come from the union of the spheres and the material's density.
+#include <string>
+
+#include "calibrate/config/physics_config.hpp"
+#include "solver/sim/body_def.hpp"
+
+namespace seedcal {
+
+struct ParticleConfig {
+  BodyDef body;              // principal frame, mass properties set, material set
+  std::string description;   // e.g. the clump file name, for reports
+};
+
+ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys,
+                             const std::string& config_path);
+
+}  // namespace seedcal

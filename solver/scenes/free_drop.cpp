@@ -1,0 +1,90 @@
+#include "solver/scenes/free_drop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <limits>
+
+#include "solver/walls/wall.hpp"
+
+namespace seedcal {
+
+FreeDropResult run_free_drop(const FreeDropSpec& spec) {
+  const auto wall_t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+  FreeDropResult res;
+
+  SimulationOptions opt;
+  opt.contact = spec.physics.contact;
+  opt.gravity_m_s2 = spec.physics.gravity_m_s2;
+  opt.threads = 1;  // one body: threads would only add overhead
+  opt.seed = spec.seed;
+  opt.track_body_contacts = true;
+  opt.dt_s = 1.0;
+  Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
+
+  BodyDef b = spec.body;
+  if (spec.random_orientation) b.orientation = uniform_random_rotation(sim.rng());
+  res.orientation = b.orientation;
+  // Place the lowest point of the clump drop_height_m above the plate z = 0.
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const SphereDef& s : b.spheres) lowest = std::min(lowest, (b.orientation * s.offset_m).z() - s.radius_m);
+  const double com_at_touch = -lowest;
+  b.position_m = Vec3(0.0, 0.0, com_at_touch + spec.drop_height_m);
+  b.velocity_m_s.setZero();
+  b.angular_velocity_rad_s.setZero();
+
+  Simulation probe(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
+  probe.add_body(b);
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double v_impact = std::sqrt(2.0 * g * spec.drop_height_m);
+  opt.dt_s = choose_time_step(spec.time_step, time_step_limits(probe, v_impact));
+  Simulation run(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
+  run.add_body(b);
+  Wall plate;
+  plate.name = "plate";
+  plate.shape = std::make_shared<PlaneShape>(Vec3::UnitZ());
+  plate.material = spec.plate_material;
+  run.add_wall(std::move(plate));
+
+  enum class Phase { falling, impact, rising } phase = Phase::falling;
+  double apex = -std::numeric_limits<double>::infinity();
+  res.run.stop_reason = "max_time_s reached before the rebound apex";
+  const auto max_steps = static_cast<std::uint64_t>(spec.max_time_s / opt.dt_s);
+  for (std::uint64_t s = 0; s < max_steps; ++s) {
+    if (!run.step()) {
+      res.run.failure = run.failure();
+      res.run.stop_reason = std::string("guard: ") + to_string(run.failure().status);
+      break;
+    }
+    const auto& B = run.bodies();
+    const int touching = run.stats().max_body_contacts;
+    if (phase == Phase::falling && touching > 0) {
+      phase = Phase::impact;
+      res.impact_speed_m_s = -B.velocity_m_s[0].z();
+    }
+    if (phase == Phase::impact) {
+      res.contact_points = std::max(res.contact_points, touching);
+      if (touching == 0) {
+        phase = Phase::rising;
+        res.rebound_speed_m_s = B.velocity_m_s[0].z();
+      }
+    }
+    if (phase == Phase::rising) {
+      apex = std::max(apex, B.position_m[0].z());
+      if (B.velocity_m_s[0].z() <= 0.0 || run.stats().max_body_contacts > 0) {
+        res.run.stop_reason = "apex of the first rebound reached";
+        break;
+      }
+    }
+  }
+  res.rebound_height_m = phase == Phase::rising ? std::max(0.0, apex - com_at_touch) : 0.0;
+  res.run.steps = run.step_count();
+  res.run.bodies = 1;
+  res.run.spheres = run.spheres().size();
+  res.run.dt_s = opt.dt_s;
+  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  return res;
+}
+
+}  // namespace seedcal
