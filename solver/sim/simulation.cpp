@@ -80,6 +80,11 @@ std::size_t Simulation::add_wall(Wall wall) {
   return walls_.size() - 1;
 }
 
+void Simulation::set_time_step(double dt_s) {
+  if (!(dt_s > 0.0)) throw std::invalid_argument("set_time_step: dt_s must be > 0");
+  options_.dt_s = dt_s;
+}
+
 void Simulation::set_body_motion(std::uint32_t b, const Vec3& v, const Vec3& w) {
   bodies_.velocity_m_s[b] = v;
   bodies_.angular_velocity[b] = w;

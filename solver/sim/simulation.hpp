@@ -83,6 +83,8 @@ class Simulation {
   double potential_energy_j() const;
   // Smallest Rayleigh time step over all spheres (sim/time_step.hpp), s.
   double rayleigh_time_step_s() const;
+  // Changes the time step between steps (velocity Verlet carries the last forces over).
+  void set_time_step(double dt_s);
   // Sets a body's velocity and angular velocity (world frame).
   void set_body_motion(std::uint32_t b, const Vec3& v, const Vec3& w);
 

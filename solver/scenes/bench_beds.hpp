@@ -1,0 +1,48 @@
+#pragma once
+// The two throughput benchmarks, the same scenes as the LIGGGHTS decks in
+// shared/bench/liggghts/ (in.settled_bed, in.clump_bed): same sizes, materials, box, insertion
+// region, settling protocol and 20,000 timed steps at dt = 1e-6 s.
+//
+//   settled bed: 10,000 spheres r = 2 mm in a 0.1 x 0.1 m box (planes x, y = 0 and 0.1, floor
+//                z = 0), inserted at random non-overlapping positions in
+//                [0.0025, 0.0975]^2 x [0.0025, 0.1975], settled 80,000 steps at 5e-6 s.
+//   clump bed:   1,000 nine-sphere clumps (data/bench/clump9.txt) inserted at random poses in
+//                [0.006, 0.094]^2 x [0.006, 0.294], settled 100,000 steps at 5e-6 s.
+// Materials: E 165 MPa, nu 0.4, e 0.45, mu 0.55, mu_r 0.05, rho 1340 kg/m3 (walls alike),
+// Hertz-Mindlin with tangential history and CDT rolling friction (seedcal's CDT uses each body's
+// own spin, LIGGGHTS's the relative spin and R*); Verlet skin 0.4 mm as the decks' `neighbor`.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "solver/clump/mass_properties.hpp"
+
+namespace seedcal {
+
+struct BenchSpec {
+  std::string name;              // "settled-bed" or "clump-bed"
+  std::vector<SphereXYZR> clump; // for the clump bed
+  std::uint64_t settle_steps = 0;
+  std::uint64_t timed_steps = 20000;
+  int threads = 1;
+  std::uint64_t seed = 1;
+};
+
+struct BenchResult {
+  std::size_t spheres = 0, bodies = 0;
+  std::uint64_t steps = 0;       // timed steps
+  double wall_seconds = 0.0;     // timed steps only
+  double settle_wall_seconds = 0.0;
+  double sphere_steps_per_second = 0.0;
+  double contacts_per_sphere = 0.0;  // (2 sphere-sphere + sphere-wall contacts) / spheres
+  std::size_t neighbour_builds = 0;  // during the timed steps
+  double kinetic_energy_j = 0.0;
+  std::string failure;           // empty when the run completed
+  double integrate_s = 0, neighbour_s = 0, contact_s = 0, reduce_s = 0;  // timed-step profile
+};
+
+BenchSpec settled_bed_spec();
+BenchSpec clump_bed_spec(std::vector<SphereXYZR> clump);
+BenchResult run_bench(const BenchSpec& spec);
+
+}  // namespace seedcal

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Runs the peer benchmark back to back on this machine: the LIGGGHTS decks of
+# shared/bench/liggghts/ (Debian package `liggghts`) and `seedcal bench` on the same scenes, on one
+# and two processes/threads, and prints one table. Needs build/seedcal (scripts/setup.sh).
+#   bash tests/bench/compare_liggghts.sh [OUTDIR]
+set -euo pipefail
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+decks="$root/../shared/bench/liggghts"
+out="${1:-$root/out/bench}"
+mkdir -p "$out"
+command -v liggghts >/dev/null || { echo "install the Debian package: apt-get install -y liggghts openmpi-bin"; exit 2; }
+cp "$decks"/in.settled_bed "$decks"/in.clump_bed "$decks"/clump9.txt "$out/"
+cd "$out"
+
+loop_time() { grep "Loop time" "$1" | tail -1 | awk '{print $4}'; }
+contacts() { awk '/Step +Atoms +KinEng +c_cs/{f=1;next} f&&/^ +[0-9]/{c=$4} END{print c}' "$1"; }
+
+run_liggghts() {  # name deck settle np
+  local name=$1 deck=$2 settle=$3 np=$4
+  if [ "$np" = 1 ]; then
+    liggghts -var settle "$settle" -var steps 20000 -in "$deck" -log "lig-$name-$np.log" > /dev/null
+  else
+    mpirun --allow-run-as-root -np "$np" liggghts -var settle "$settle" -var steps 20000 -in "$deck" \
+      -log "lig-$name-$np.log" > /dev/null
+  fi
+}
+
+printf "%-12s %-10s %-4s %14s %12s %10s\n" scene code n sphere_steps/s contacts/sph wall_s > table.txt
+for scene in settled-bed clump-bed; do
+  if [ "$scene" = settled-bed ]; then deck=in.settled_bed settle=80000 spheres=10000; else deck=in.clump_bed settle=100000 spheres=9000; fi
+  for n in 1 2; do
+    run_liggghts "$scene" "$deck" "$settle" "$n"
+    t=$(loop_time "lig-$scene-$n.log")
+    c=$(contacts "lig-$scene-$n.log")
+    printf "%-12s %-10s %-4s %14.4e %12.3f %10.2f\n" "$scene" liggghts "$n" \
+      "$(echo "$spheres * 20000 / $t" | bc -l)" "$(echo "$c / $spheres" | bc -l)" "$t" >> table.txt
+    "$root/build/seedcal" bench "$scene" --threads "$n" --clump-file "$root/data/bench/clump9.txt" \
+      | tail -1 > "seedcal-$scene-$n.json"
+    python3 - "$scene" "$n" "seedcal-$scene-$n.json" >> table.txt <<'PY'
+import json, sys
+j = json.load(open(sys.argv[3]))
+print("%-12s %-10s %-4s %14.4e %12.3f %10.2f" % (sys.argv[1], "seedcal", sys.argv[2],
+      j["sphere_steps_per_second"], j["contacts_per_sphere"], j["wall_seconds"]))
+PY
+  done
+done
+cat table.txt
