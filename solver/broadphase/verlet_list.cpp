@@ -128,6 +128,35 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
   ++builds_;
 }
 
+void VerletList::renumber(const std::vector<std::uint32_t>& new_of_old, const SphereState& spheres) {
+  struct Entry {
+    std::uint32_t bi, bj, i, j;
+    Vec3 t, r;
+  };
+  std::vector<Entry> e(si_.size());
+  const bool rolling = !rolling_.empty();
+  for (std::size_t k = 0; k < si_.size(); ++k) {
+    std::uint32_t i = new_of_old[si_[k]], j = new_of_old[sj_[k]];
+    Vec3 t = tangential_[k], r = rolling ? rolling_[k] : Vec3::Zero();
+    if (spheres.body[i] > spheres.body[j]) {
+      std::swap(i, j);
+      t = -t;
+      r = -r;
+    }
+    e[k] = {spheres.body[i], spheres.body[j], i, j, t, r};
+  }
+  std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) {
+    return std::tie(a.bi, a.bj, a.i, a.j) < std::tie(b.bi, b.bj, b.i, b.j);
+  });
+  for (std::size_t k = 0; k < e.size(); ++k) {
+    si_[k] = e[k].i;
+    sj_[k] = e[k].j;
+    tangential_[k] = e[k].t;
+    if (rolling) rolling_[k] = e[k].r;
+  }
+  built_at_.clear();  // forces the next needs_rebuild() to say yes
+}
+
 bool VerletList::needs_rebuild(const SphereState& spheres) const {
   if (built_at_.size() != spheres.size()) return true;
   const double limit2 = 0.25 * skin_m_ * skin_m_;

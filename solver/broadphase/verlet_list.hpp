@@ -20,6 +20,11 @@ class VerletList {
   // `threads` (chunks are concatenated in body order).
   void build(const SphereState& spheres, double skin_m, bool keep_rolling, int threads = 1);
   bool needs_rebuild(const SphereState& spheres) const;
+  // After the spheres were renumbered (new index = new_of_old[old index]; `spheres` is the new
+  // state), carries the history over to the new numbering and re-sorts it by the new key, so the
+  // next build() merges it as usual. A pair whose body order flips swaps i and j and negates its
+  // history (the tangential spring of i relative to j is minus that of j relative to i).
+  void renumber(const std::vector<std::uint32_t>& new_of_old, const SphereState& spheres);
 
   std::size_t pair_count() const { return si_.size(); }
   std::size_t group_count() const { return group_start_.empty() ? 0 : group_start_.size() - 1; }

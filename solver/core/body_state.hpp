@@ -24,6 +24,8 @@ struct BodyState {
   std::vector<Vec3> inv_inertia;           // 1 / principal_inertia
   std::vector<std::uint8_t> isotropic;     // 1 when the three principal moments are equal
   std::vector<std::uint32_t> first_sphere; // spheres of body b: [first_sphere[b], first_sphere[b+1])
+  std::vector<std::uint32_t> id;           // the id add_body() returned (bodies are re-sorted
+                                           // in space for cache locality; ids stay)
   std::vector<Vec3> force_n;               // accumulated this step, world
   std::vector<Vec3> torque_n_m;            // about the centre of mass, world
 

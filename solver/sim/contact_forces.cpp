@@ -74,15 +74,16 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
 #ifdef _OPENMP
     t = omp_get_thread_num();
 #endif
-    Vec3* F = s.thread_force_[static_cast<std::size_t>(t)].data();
-    Vec3* T = s.thread_torque_[static_cast<std::size_t>(t)].data();
-    Vec3* WF = s.thread_wall_force_[static_cast<std::size_t>(t)].data();
-    Vec3* WT = s.thread_wall_torque_[static_cast<std::size_t>(t)].data();
+    Vec3* __restrict F = s.thread_force_[static_cast<std::size_t>(t)].data();
+    Vec3* __restrict T = s.thread_torque_[static_cast<std::size_t>(t)].data();
+    Vec3* __restrict WF = s.thread_wall_force_[static_cast<std::size_t>(t)].data();
+    Vec3* __restrict WT = s.thread_wall_torque_[static_cast<std::size_t>(t)].data();
     std::fill(F, F + nb, Vec3::Zero());
     std::fill(T, T + nb, Vec3::Zero());
     std::fill(WF, WF + nw, Vec3::Zero());
     std::fill(WT, WT + nw, Vec3::Zero());
-    ThreadStats& st = tstats[static_cast<std::size_t>(t)];
+    // A private copy: the per-contact updates must not share a cache line between threads.
+    ThreadStats st = tstats[static_cast<std::size_t>(t)];
 
     // ---- sphere-sphere, one body pair per group -----------------------------------------------
 #pragma omp for schedule(static)
@@ -205,6 +206,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       wall_group_touch[g] = touching;
       st.wall_contacts += static_cast<std::size_t>(touching);
     }
+    tstats[static_cast<std::size_t>(t)] = st;
   }
 
   for (const ThreadStats& st : tstats) {

@@ -58,6 +58,8 @@ std::uint32_t Simulation::add_body(const BodyDef& def) {
   bodies_.angular_velocity.push_back(def.angular_velocity_rad_s);
   bodies_.mass_kg.push_back(def.mass_kg);
   bodies_.inv_mass.push_back(1.0 / def.mass_kg);
+  bodies_.id.push_back(b);
+  index_of_id_.push_back(b);
   bodies_.force_n.push_back(Vec3::Zero());
   bodies_.torque_n_m.push_back(Vec3::Zero());
   for (const SphereDef& sd : def.spheres) {
@@ -251,6 +253,9 @@ bool Simulation::step() {
   ++step_;
   update_sphere_positions();
   lap(prof, t0, profile_.integrate_s);
+  if (options_.sort_interval_steps > 0 && step_ % options_.sort_interval_steps == 0 &&
+      bodies_.size() >= 512)
+    sort_spatially();
   if (pairs_.needs_rebuild(spheres_) || walls_moved_beyond_skin()) rebuild_lists();
   lap(prof, t0, profile_.neighbour_s);
   compute_forces();

@@ -28,6 +28,9 @@ struct SimulationOptions {
   GuardOptions guards;
   bool track_body_contacts = false;  // count sphere-level contacts per body each step
   bool profile = false;              // accumulate wall time per phase of the step (StepProfile)
+  // Re-sort bodies (and their spheres) along a space-filling curve every this many steps, so
+  // neighbours are near in memory (0: never). Worlds under 512 bodies are never sorted.
+  std::uint64_t sort_interval_steps = 1000;
   std::uint64_t seed = 0;
 };
 
@@ -52,7 +55,8 @@ class Simulation {
  public:
   Simulation(InteractionTable table, SimulationOptions options);
 
-  // Building the world. Bodies get consecutive ids in the order they are added.
+  // Building the world. Bodies get consecutive ids in the order they are added. Their storage
+  // index may change when the world is re-sorted in space: find a body with index_of(id).
   std::uint32_t add_body(const BodyDef& def);
   std::size_t add_wall(Wall wall);
   void set_log(std::function<void(const std::string&)> sink) { log_ = std::move(sink); }
@@ -62,6 +66,7 @@ class Simulation {
   // Advances up to n steps; stops early on a guard failure.
   bool run(std::uint64_t n);
 
+  std::uint32_t index_of(std::uint32_t id) const { return index_of_id_[id]; }
   const BodyState& bodies() const { return bodies_; }
   BodyState& bodies() { return bodies_; }
   const SphereState& spheres() const { return spheres_; }
@@ -96,6 +101,7 @@ class Simulation {
   bool check_guards();
   double energy_budget_j() const;
   void rebuild_lists();
+  void sort_spatially();
   bool walls_moved_beyond_skin() const;
   void fail(RunStatus s, std::int64_t body, std::string message);
 
@@ -115,6 +121,7 @@ class Simulation {
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
   std::vector<std::vector<Vec3>> thread_wall_force_, thread_wall_torque_;
   std::vector<WallPose> wall_pose_at_build_;
+  std::vector<std::uint32_t> index_of_id_;
   GuardFailure failure_;
   StepProfile profile_;
   std::function<void(const std::string&)> log_;

@@ -67,4 +67,29 @@ void WallContactList::build(const SphereState& spheres, const std::vector<Wall>&
   rolling_ = std::move(rolling);
 }
 
+void WallContactList::renumber(const std::vector<std::uint32_t>& new_of_old,
+                               const SphereState& spheres) {
+  struct Entry {
+    std::uint32_t b, s, p;
+    std::uint16_t w;
+    Vec3 t, r;
+  };
+  const bool rolling = !rolling_.empty();
+  std::vector<Entry> e(sphere_.size());
+  for (std::size_t k = 0; k < sphere_.size(); ++k) {
+    const std::uint32_t s = new_of_old[sphere_[k]];
+    e[k] = {spheres.body[s], s, primitive_[k], wall_[k], tangential_[k], rolling ? rolling_[k] : Vec3::Zero()};
+  }
+  std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) {
+    return std::tie(a.b, a.w, a.s, a.p) < std::tie(b.b, b.w, b.s, b.p);
+  });
+  for (std::size_t k = 0; k < e.size(); ++k) {
+    sphere_[k] = e[k].s;
+    primitive_[k] = e[k].p;
+    wall_[k] = e[k].w;
+    tangential_[k] = e[k].t;
+    if (rolling) rolling_[k] = e[k].r;
+  }
+}
+
 }  // namespace seedcal

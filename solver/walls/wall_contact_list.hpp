@@ -15,6 +15,9 @@ class WallContactList {
   void build(const SphereState& spheres, const std::vector<Wall>& walls, double skin_m,
              bool keep_rolling);
 
+  // As VerletList::renumber: carry the history over to renumbered spheres (new = new_of_old[old]).
+  void renumber(const std::vector<std::uint32_t>& new_of_old, const SphereState& spheres);
+
   std::size_t size() const { return sphere_.size(); }
   std::size_t group_count() const { return group_start_.empty() ? 0 : group_start_.size() - 1; }
   const std::vector<std::uint32_t>& sphere() const { return sphere_; }
