@@ -72,8 +72,10 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   if (in_first_impact) res.contact_duration_s = sim.time_s() - res.first_touch_s;
 
   const BodyState& B = sim.bodies();
-  for (std::size_t b = 0; b < B.size(); ++b)
+  for (std::uint32_t id = 0; id < B.size(); ++id) {  // input order, whatever the storage order
+    const std::uint32_t b = sim.index_of(id);
     res.final_states.push_back({B.position_m[b], B.velocity_m_s[b], B.angular_velocity[b]});
+  }
   res.run.steps = sim.step_count();
   res.run.bodies = B.size();
   res.run.spheres = sim.spheres().size();
