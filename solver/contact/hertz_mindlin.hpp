@@ -82,7 +82,7 @@ inline constexpr double kSqrtFiveSixths = 0.91287092917527685576;
     // that stretches the spring backwards and the contact then under-shoots Coulomb friction (8 %
     // too little tangential impulse for e = 0.45 in tests/physics/oblique_impact_test.cpp).
     ft *= ft_max / std::sqrt(ft_sq);
-    tangential_disp_m = st > 0.0 ? Vec3(-ft / st) : Vec3::Zero();
+    tangential_disp_m = st > 0.0 ? Vec3(ft * (-1.0 / st)) : Vec3::Zero();
   }
   return {-fn * k.normal + ft, fn, sn};
 }

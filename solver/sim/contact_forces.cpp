@@ -64,7 +64,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
     for (std::size_t b = 0; b < nb; ++b) {
       const double w = B.angular_velocity[b].norm();
-      spin_dir[b] = w > 1e-12 ? Vec3(B.angular_velocity[b] / w) : Vec3::Zero();
+      spin_dir[b] = w > 1e-12 ? Vec3(B.angular_velocity[b] * (1.0 / w)) : Vec3::Zero();
     }
   }
 
