@@ -3,9 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <random>
-#include <unordered_map>
 
-#include "solver/scenes/free_drop.hpp"
+#include "solver/sim/particle_factory.hpp"
 #include "solver/sim/simulation.hpp"
 
 namespace seedcal {
@@ -18,54 +17,6 @@ Wall plane(const Vec3& point, const Vec3& normal) {
   w.material = 0;
   w.pose.origin_m = point;
   return w;
-}
-
-// Random sequential insertion of a body template in an axis-aligned region, as LIGGGHTS's
-// insert/pack does: random position (and orientation), rejected if any sphere would overlap an
-// already inserted one or leave the region (all_in). Overlaps are checked on a hash grid.
-std::size_t insert_random(Simulation& sim, const BodyDef& tpl, std::size_t count, const Vec3& lo,
-                          const Vec3& hi, bool rotate, std::uint64_t max_attempts) {
-  double r_max = 0.0, extent = 0.0;
-  for (const SphereDef& s : tpl.spheres) {
-    r_max = std::max(r_max, s.radius_m);
-    extent = std::max(extent, s.offset_m.norm() + s.radius_m);
-  }
-  const double cell = 2.0 * r_max;
-  auto key = [&](const Vec3& p) {
-    const auto ix = static_cast<std::int64_t>(std::floor(p.x() / cell));
-    const auto iy = static_cast<std::int64_t>(std::floor(p.y() / cell));
-    const auto iz = static_cast<std::int64_t>(std::floor(p.z() / cell));
-    return (ix * 73856093) ^ (iy * 19349663) ^ (iz * 83492791);
-  };
-  std::unordered_multimap<std::int64_t, std::pair<Vec3, double>> grid;
-  std::uniform_real_distribution<double> ux(lo.x() + extent, hi.x() - extent),
-      uy(lo.y() + extent, hi.y() - extent), uz(lo.z() + extent, hi.z() - extent);
-  auto& rng = sim.rng();
-  std::size_t placed = 0;
-  std::vector<std::pair<Vec3, double>> world;
-  for (std::uint64_t a = 0; a < max_attempts && placed < count; ++a) {
-    BodyDef b = tpl;
-    b.position_m = Vec3(ux(rng), uy(rng), uz(rng));
-    if (rotate) b.orientation = uniform_random_rotation(rng);
-    world.clear();
-    for (const SphereDef& s : b.spheres) world.push_back({b.position_m + b.orientation * s.offset_m, s.radius_m});
-    bool ok = true;
-    for (const auto& [p, r] : world) {
-      for (int dx = -1; dx <= 1 && ok; ++dx)
-        for (int dy = -1; dy <= 1 && ok; ++dy)
-          for (int dz = -1; dz <= 1 && ok; ++dz) {
-            const auto range = grid.equal_range(key(p + cell * Vec3(dx, dy, dz)));
-            for (auto it = range.first; it != range.second; ++it)
-              if ((it->second.first - p).norm() < it->second.second + r) { ok = false; break; }
-          }
-      if (!ok) break;
-    }
-    if (!ok) continue;
-    for (const auto& w : world) grid.emplace(key(w.first), w);
-    sim.add_body(b);
-    ++placed;
-  }
-  return placed;
 }
 
 }  // namespace
@@ -103,8 +54,16 @@ BenchResult run_bench(const BenchSpec& spec) {
   const Vec3 hi = clumps ? Vec3(0.094, 0.094, 0.294) : Vec3(0.0975, 0.0975, 0.1975);
   const std::size_t want = clumps ? 1000 : 10000;
   BenchResult res;
-  const std::size_t placed = insert_random(sim, tpl, want, lo, hi, clumps, 300 * want);
-  if (placed < want) res.failure = "inserted only " + std::to_string(placed) + " of " + std::to_string(want);
+  // As the decks' insert/pack: random non-overlapping poses, all inside the region.
+  FactorySpec fs;
+  fs.body = tpl;
+  fs.region.lo_m = lo;
+  fs.region.hi_m = hi;
+  fs.count = want;
+  fs.random_orientation = clumps;
+  fs.max_attempts = 300 * want;
+  const FactoryResult placed = insert_particles(sim, fs);
+  if (!placed.complete) res.failure = placed.stop_reason;
   sim.add_wall(plane(Vec3::Zero(), Vec3::UnitZ()));
   sim.add_wall(plane(Vec3::Zero(), Vec3::UnitX()));
   sim.add_wall(plane(Vec3(0.1, 0, 0), -Vec3::UnitX()));

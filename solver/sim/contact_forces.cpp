@@ -82,6 +82,10 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     std::fill(T, T + nb, Vec3::Zero());
     std::fill(WF, WF + nw, Vec3::Zero());
     std::fill(WT, WT + nw, Vec3::Zero());
+    double* WK = s.thread_wall_stiffness_[static_cast<std::size_t>(t)].data();
+    int* WC = s.thread_wall_contacts_[static_cast<std::size_t>(t)].data();
+    std::fill(WK, WK + nw, 0.0);
+    std::fill(WC, WC + nw, 0);
     // A private copy: the per-contact updates must not share a cache line between threads.
     ThreadStats st = tstats[static_cast<std::size_t>(t)];
 
@@ -190,6 +194,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         F[b] += cf.force_on_i_n;
         T[b] += rc.cross(cf.force_on_i_n);
         WF[ww[a]] -= cf.force_on_i_n;
+        WK[ww[a]] += cf.normal_stiffness_n_m;
+        ++WC[ww[a]];
         WT[ww[a]] -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
           T[b] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, hit.distance, spin_dir[b]);

@@ -127,6 +127,8 @@ void Simulation::ensure_ready() {
   thread_torque_.assign(t, std::vector<Vec3>(bodies_.size()));
   thread_wall_force_.assign(t, std::vector<Vec3>(walls_.size()));
   thread_wall_torque_.assign(t, std::vector<Vec3>(walls_.size()));
+  thread_wall_stiffness_.assign(t, std::vector<double>(walls_.size()));
+  thread_wall_contacts_.assign(t, std::vector<int>(walls_.size()));
   update_sphere_positions();
   rebuild_lists();
   ready_ = true;
@@ -190,12 +192,18 @@ void Simulation::compute_forces() {
   }
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     Vec3 f = Vec3::Zero(), tq = Vec3::Zero();
+    double k = 0.0;
+    int c = 0;
     for (std::size_t t = 0; t < nt; ++t) {
       f += thread_wall_force_[t][w];
       tq += thread_wall_torque_[t][w];
+      k += thread_wall_stiffness_[t][w];
+      c += thread_wall_contacts_[t][w];
     }
     walls_[w].force_n = f;
     walls_[w].torque_n_m = tq;
+    walls_[w].contact_stiffness_n_m = k;
+    walls_[w].contacts = c;
   }
   stats_ = StepStats{};
   stats_.sphere_contacts = total.sphere_contacts;

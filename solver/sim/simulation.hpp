@@ -120,6 +120,8 @@ class Simulation {
   // thread count).
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
   std::vector<std::vector<Vec3>> thread_wall_force_, thread_wall_torque_;
+  std::vector<std::vector<double>> thread_wall_stiffness_;
+  std::vector<std::vector<int>> thread_wall_contacts_;
   std::vector<WallPose> wall_pose_at_build_;
   std::vector<std::uint32_t> index_of_id_;
   GuardFailure failure_;

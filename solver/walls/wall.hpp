@@ -93,6 +93,8 @@ struct Wall {
   // wall frame's origin (world frame).
   Vec3 force_n = Vec3::Zero();
   Vec3 torque_n_m = Vec3::Zero();
+  double contact_stiffness_n_m = 0.0;  // summed normal stiffness Sn of its contacts (servo gain)
+  int contacts = 0;                    // sphere-level contacts this step
 
   // Velocity of the wall's material point at world position p.
   Vec3 velocity_at(const Vec3& p) const {

@@ -1,0 +1,49 @@
+#include "solver/walls/box_shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace seedcal {
+
+bool Rectangle::nearest(const Vec3& c, double reach, WallHit& hit) const {
+  const Vec3 r = c - centre;
+  const double a = r.dot(u), b = r.dot(v), h = r.dot(n);
+  if (std::abs(a) <= hu && std::abs(b) <= hv) {
+    if (h >= reach) return false;
+    hit.distance = h;  // signed: a sphere that crossed the face is pushed back
+    hit.normal = -n;
+    hit.point = c - h * n;
+    return true;
+  }
+  if (h < 0.0) return false;  // behind the face and outside its outline: not this face's business
+  const Vec3 p = centre + std::clamp(a, -hu, hu) * u + std::clamp(b, -hv, hv) * v;
+  const Vec3 to = p - c;
+  const double d = to.norm();
+  if (d >= reach || d <= 0.0) return false;
+  hit.distance = d;
+  hit.normal = to / d;
+  hit.point = p;
+  return true;
+}
+
+BoxShape::BoxShape(const Vec3& s, bool open_top) {
+  if (!(s.minCoeff() > 0.0)) throw std::invalid_argument("BoxShape: every size must be > 0");
+  const Vec3 h = 0.5 * s;
+  const Vec3 X = Vec3::UnitX(), Y = Vec3::UnitY(), Z = Vec3::UnitZ();
+  // Each face: normal pointing into the box, u x v = n.
+  faces_.push_back({Vec3(h.x(), h.y(), 0.0), X, Y, Z, h.x(), h.y()});           // floor
+  faces_.push_back({Vec3(0.0, h.y(), h.z()), Y, Z, X, h.y(), h.z()});           // x = 0
+  faces_.push_back({Vec3(s.x(), h.y(), h.z()), Z, Y, -X, h.z(), h.y()});        // x = lx
+  faces_.push_back({Vec3(h.x(), 0.0, h.z()), Z, X, Y, h.z(), h.x()});           // y = 0
+  faces_.push_back({Vec3(h.x(), s.y(), h.z()), X, Z, -Y, h.x(), h.z()});        // y = ly
+  if (!open_top) faces_.push_back({Vec3(h.x(), h.y(), s.z()), Y, X, -Z, h.y(), h.x()});  // lid
+}
+
+double BoxShape::bounding_radius_m() const {
+  double r = 0.0;
+  for (const Rectangle& f : faces_) r = std::max(r, f.centre.norm() + std::hypot(f.hu, f.hv));
+  return r;
+}
+
+}  // namespace seedcal

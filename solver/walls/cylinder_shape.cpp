@@ -1,0 +1,69 @@
+#include "solver/walls/cylinder_shape.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace seedcal {
+
+CylinderShape::CylinderShape(double radius_m, double length_m, bool inside, bool cap_bottom, bool cap_top)
+    : radius_(radius_m), length_(length_m), inside_(inside), cap_bottom_(cap_bottom), cap_top_(cap_top) {
+  if (!(radius_m > 0.0) || !(length_m > 0.0))
+    throw std::invalid_argument("CylinderShape: radius and length must be > 0");
+}
+
+double CylinderShape::bounding_radius_m() const { return std::hypot(radius_, length_); }
+
+bool CylinderShape::nearest(int primitive, const Vec3& c, double reach, WallHit& hit) const {
+  switch (primitive) {
+    case 0: return side(c, reach, hit);
+    case 1: return cap_bottom_ && cap(0.0, inside_ ? 1.0 : -1.0, c, reach, hit);
+    case 2: return cap_top_ && cap(length_, inside_ ? -1.0 : 1.0, c, reach, hit);
+    default: return false;
+  }
+}
+
+bool CylinderShape::side(const Vec3& c, double reach, WallHit& hit) const {
+  const double rho = std::hypot(c.x(), c.y());
+  const Vec3 radial = rho > 1e-300 ? Vec3(c.x() / rho, c.y() / rho, 0.0) : Vec3::UnitX();
+  if (c.z() >= 0.0 && c.z() <= length_) {
+    const double d = inside_ ? radius_ - rho : rho - radius_;  // signed, > 0 on the particle side
+    if (d >= reach) return false;
+    hit.distance = d;
+    hit.normal = inside_ ? radial : Vec3(-radial);
+    hit.point = Vec3(radius_ * radial.x(), radius_ * radial.y(), c.z());
+    return true;
+  }
+  // Beyond the axial extent: the rim circle.
+  const Vec3 rim(radius_ * radial.x(), radius_ * radial.y(), std::clamp(c.z(), 0.0, length_));
+  const Vec3 to = rim - c;
+  const double d = to.norm();
+  if (d >= reach || d <= 0.0) return false;
+  hit.distance = d;
+  hit.normal = to / d;
+  hit.point = rim;
+  return true;
+}
+
+// A disc at z = z0; `inward` is the side particles live on (+1: z > z0).
+bool CylinderShape::cap(double z0, double inward, const Vec3& c, double reach, WallHit& hit) const {
+  const double rho = std::hypot(c.x(), c.y());
+  if (rho <= radius_) {
+    const double d = inward * (c.z() - z0);
+    if (d >= reach) return false;
+    hit.distance = d;
+    hit.normal = Vec3(0.0, 0.0, -inward);
+    hit.point = Vec3(c.x(), c.y(), z0);
+    return true;
+  }
+  const Vec3 rim(radius_ * c.x() / rho, radius_ * c.y() / rho, z0);
+  const Vec3 to = rim - c;
+  const double d = to.norm();
+  if (d >= reach || d <= 0.0) return false;
+  hit.distance = d;
+  hit.normal = to / d;
+  hit.point = rim;
+  return true;
+}
+
+}  // namespace seedcal

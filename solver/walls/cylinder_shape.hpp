@@ -1,0 +1,32 @@
+#pragma once
+// A finite circular cylinder about the wall frame's z axis, from z = 0 to z = length_m, radius
+// radius_m. `inside`: particles live inside (a drum, a shear-box ring, a piling tube); otherwise
+// outside. Optional end caps (discs of the same radius) at z = 0 and z = length_m.
+// Primitives: 0 = lateral surface, 1 = cap at z = 0, 2 = cap at z = length_m.
+//
+// Nearest points: within the axial extent the lateral surface is a half-space in the radial
+// direction (a sphere that crossed it is pushed back, no tunnelling); beyond it the nearest point is
+// on the rim circle. A cap is a half-space within its radius and its rim beyond.
+#include "solver/walls/wall.hpp"
+
+namespace seedcal {
+
+class CylinderShape final : public WallShape {
+ public:
+  CylinderShape(double radius_m, double length_m, bool inside, bool cap_bottom, bool cap_top);
+  int primitive_count() const override { return 3; }
+  bool nearest(int primitive, const Vec3& c, double reach, WallHit& hit) const override;
+  const char* type_name() const override { return "cylinder"; }
+  double bounding_radius_m() const override;
+  Vec3 symmetry_axis() const override { return Vec3::UnitZ(); }
+  double radius_m() const { return radius_; }
+  double length_m() const { return length_; }
+
+ private:
+  bool side(const Vec3& c, double reach, WallHit& hit) const;
+  bool cap(double z0, double inward, const Vec3& c, double reach, WallHit& hit) const;
+  double radius_, length_;
+  bool inside_, cap_bottom_, cap_top_;
+};
+
+}  // namespace seedcal
