@@ -37,6 +37,11 @@ ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys,
       spheres.push_back({Vec3(row[0], row[1], row[2]), row[3]});
     }
   }
+  // Size distribution (Table 5 of the paper: width sd / mean width); truncated at +-2 sd by default.
+  out.scale.sd = p->number("scale_sd", Range::closed(0.0, 0.5), 0.0);
+  out.scale.lo = p->number("scale_min", Range::left_open(0.0, 1.0), 1.0 - 2.0 * out.scale.sd);
+  out.scale.hi = p->number("scale_max", Range::closed(1.0, 3.0), 1.0 + 2.0 * out.scale.sd);
+  if (out.scale.sd > 0.0 && out.scale.lo >= out.scale.hi) p->error("scale_min", "must be below scale_max");
   p->check_unknown_keys();
   if (!spheres.empty()) out.body = clump_body(spheres, density, mat);
   return out;

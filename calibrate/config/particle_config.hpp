@@ -4,17 +4,20 @@
 //   material = "seed"                                   # a [materials.NAME]
 //   clump_file = "data/clumps/jinong1-manual-9.toml"    # a clump file (seedcal clump build), or
 //   spheres_m = [[x, y, z, r], ...]                     # spheres inline (any frame)
+//   scale_sd = 0.13, scale_min = 0.74, scale_max = 1.26 # optional size distribution (mean 1)
 // Mass properties come from the union of the spheres and the material's density.
 #include <string>
 
 #include "calibrate/config/physics_config.hpp"
 #include "solver/sim/body_def.hpp"
+#include "solver/sim/particle_factory.hpp"
 
 namespace seedcal {
 
 struct ParticleConfig {
   BodyDef body;              // principal frame, mass properties set, material set
   std::string description;   // e.g. the clump file name, for reports
+  ScaleDistribution scale;   // truncated normal, mean 1 (the template's size)
 };
 
 ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys,

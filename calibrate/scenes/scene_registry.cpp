@@ -8,6 +8,7 @@ const std::map<std::string, SceneRunner>& scene_registry() {
   static const std::map<std::string, SceneRunner> kScenes = {
       {"impact", run_impact_scene},
       {"free_drop", run_free_drop_scene},
+      {"bulk_density", run_bulk_density_scene},
   };
   return kScenes;
 }

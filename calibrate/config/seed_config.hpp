@@ -1,0 +1,29 @@
+#pragma once
+// What the seed scenes share in their configs: the fidelity, the [particle] table with its scale
+// distribution, and the rig table of the chosen fidelity:
+//   fidelity = "paper" | "quick"
+//   [particle] material, clump_file | spheres_m,
+//              scale_sd = 0.13, scale_min = 0.74, scale_max = 1.26   # optional; mean is 1
+//   [RIG.paper] ... / [RIG.quick] ...                                 # per-fidelity rig keys
+#include <optional>
+#include <string>
+
+#include "calibrate/config/particle_config.hpp"
+#include "solver/scenes/seed_bed.hpp"
+
+namespace seedcal {
+
+struct SeedSceneConfig {
+  PhysicsConfig phys;
+  SeedSpec seeds;
+  std::string fidelity;
+  std::string particle_description;
+};
+
+SeedSceneConfig read_seed_scene(TomlReader& root, const std::string& config_path);
+
+// The rig table for the chosen fidelity: [rig.<fidelity>] inside [rig] (other fidelities' tables
+// are marked read so they are not reported as unknown, but are not validated here).
+std::optional<TomlReader> rig_table(TomlReader& root, const std::string& rig, const std::string& fidelity);
+
+}  // namespace seedcal

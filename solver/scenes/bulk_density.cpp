@@ -1,0 +1,89 @@
+#include "solver/scenes/bulk_density.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "solver/scenes/settle.hpp"
+#include "solver/walls/box_shape.hpp"
+
+namespace seedcal {
+
+BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
+  const auto wall_t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+  BulkDensityResult res;
+  const Vec3 c = spec.container_m;
+  const double collar = spec.collar_fraction * c.z();
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds,
+                                   std::sqrt(2.0 * g * (c.z() + collar)));
+  Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
+                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+  Wall box;
+  box.name = "container";
+  box.shape = std::make_shared<BoxShape>(Vec3(c.x(), c.y(), c.z() + collar), true);
+  box.material = spec.wall_material;
+  sim.add_wall(box);
+
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  FactorySpec fs;
+  fs.body = spec.seeds.body;
+  fs.scale = spec.seeds.scale;
+  fs.total_mass_kg = spec.overfill * c.x() * c.y() * c.z() * rho * 0.62;
+  // Pour in layers: each batch fills the collar region, then settles a little before the next.
+  fs.region.lo_m = Vec3(0.0, 0.0, 0.3 * c.z());
+  fs.region.hi_m = Vec3(c.x(), c.y(), c.z() + collar);
+  double poured = 0.0;
+  for (int batch = 0; batch < 20 && poured < fs.total_mass_kg; ++batch) {
+    FactorySpec b = fs;
+    b.total_mass_kg = fs.total_mass_kg - poured;
+    b.max_attempts = 200000;
+    const FactoryResult r = insert_particles(sim, b);
+    poured += r.mass_kg;
+    if (r.placed == 0) break;
+    if (!run_for(sim, 0.15)) break;  // let the batch fall and make room
+    // Later batches go above what is already there.
+    double top = 0.0;
+    for (std::size_t i = 0; i < sim.spheres().size(); ++i)
+      top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+    fs.region.lo_m.z() = std::min(top, c.z() + collar - 0.02);
+  }
+  res.seeds_poured = sim.bodies().size();
+  SettleResult st;
+  if (sim.failure().status == RunStatus::ok) {
+    SettleCriteria sc;
+    sc.energy_ratio = spec.settle_energy_ratio;
+    sc.max_time_s = spec.max_time_s;
+    sc.check_interval_s = 0.005;
+    st = run_until_settled(sim, sc);
+  }
+  res.run.stop_reason = sim.failure().status != RunStatus::ok
+                            ? std::string("guard: ") + to_string(sim.failure().status)
+                            : st.reason;
+  res.run.failure = sim.failure();
+  // Strike off at the rim by centroid.
+  const BodyState& B = sim.bodies();
+  for (std::size_t b = 0; b < B.size(); ++b) {
+    if (B.position_m[b].z() < c.z()) {
+      ++res.seeds_inside;
+      res.mass_inside_kg += B.mass_kg[b];
+    }
+    std::vector<std::pair<Vec3, double>> sp;
+    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
+      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
+    res.spheres.push_back(std::move(sp));
+    res.centres.push_back(B.position_m[b]);
+  }
+  const double volume = c.x() * c.y() * c.z();
+  res.bulk_density_kg_m3 = res.mass_inside_kg / volume;
+  res.solid_fraction = res.bulk_density_kg_m3 / rho;
+  res.run.steps = sim.step_count();
+  res.run.bodies = B.size();
+  res.run.spheres = sim.spheres().size();
+  res.run.dt_s = dt;
+  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  return res;
+}
+
+}  // namespace seedcal
