@@ -9,6 +9,7 @@ const std::map<std::string, SceneRunner>& scene_registry() {
       {"impact", run_impact_scene},
       {"free_drop", run_free_drop_scene},
       {"bulk_density", run_bulk_density_scene},
+      {"direct_shear", run_direct_shear_scene},
   };
   return kScenes;
 }

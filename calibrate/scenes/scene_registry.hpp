@@ -39,5 +39,6 @@ void add_run_report(nlohmann::json& j, const RunReport& r);
 nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx);
 nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx);
 nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx);
+nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx);
 
 }  // namespace seedcal

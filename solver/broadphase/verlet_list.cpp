@@ -133,21 +133,27 @@ void VerletList::renumber(const std::vector<std::uint32_t>& new_of_old, const Sp
     std::uint32_t bi, bj, i, j;
     Vec3 t, r;
   };
-  std::vector<Entry> e(si_.size());
+  std::vector<Entry> e;
+  e.reserve(si_.size());
   const bool rolling = !rolling_.empty();
   for (std::size_t k = 0; k < si_.size(); ++k) {
     std::uint32_t i = new_of_old[si_[k]], j = new_of_old[sj_[k]];
+    if (i == 0xffffffffu || j == 0xffffffffu) continue;  // a removed sphere: history dropped
     Vec3 t = tangential_[k], r = rolling ? rolling_[k] : Vec3::Zero();
     if (spheres.body[i] > spheres.body[j]) {
       std::swap(i, j);
       t = -t;
       r = -r;
     }
-    e[k] = {spheres.body[i], spheres.body[j], i, j, t, r};
+    e.push_back({spheres.body[i], spheres.body[j], i, j, t, r});
   }
   std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) {
     return std::tie(a.bi, a.bj, a.i, a.j) < std::tie(b.bi, b.bj, b.i, b.j);
   });
+  si_.resize(e.size());
+  sj_.resize(e.size());
+  tangential_.resize(e.size());
+  if (rolling) rolling_.resize(e.size());
   for (std::size_t k = 0; k < e.size(); ++k) {
     si_[k] = e[k].i;
     sj_[k] = e[k].j;

@@ -88,6 +88,9 @@ class Simulation {
   double potential_energy_j() const;
   // Smallest Rayleigh time step over all spheres (sim/time_step.hpp), s.
   double rayleigh_time_step_s() const;
+  // Removes the bodies for which `remove(storage index)` is true (e.g. struck off above a rim);
+  // the others keep their ids and their contact history.
+  void remove_bodies(const std::function<bool(std::uint32_t index)>& remove);
   // Changes the time step between steps (velocity Verlet carries the last forces over).
   void set_time_step(double dt_s);
   // Sets a body's velocity and angular velocity (world frame).
@@ -102,6 +105,7 @@ class Simulation {
   double energy_budget_j() const;
   void rebuild_lists();
   void sort_spatially();
+  void reorder_bodies(const std::vector<std::uint32_t>& old_of_new);
   bool walls_moved_beyond_skin() const;
   void fail(RunStatus s, std::int64_t body, std::string message);
 

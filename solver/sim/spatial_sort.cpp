@@ -57,9 +57,16 @@ void Simulation::sort_spatially() {
   for (std::size_t k = 0; k < nb && identity; ++k) identity = old_of_new[k] == k;
   if (identity) return;
 
-  // Spheres follow their bodies; remember where each old sphere goes.
+  reorder_bodies(old_of_new);
+}
+
+// Keeps the bodies listed in old_of_new, in that order; any body not listed is removed. Spheres
+// follow their bodies; contact history is renumbered and the history of removed spheres dropped.
+void Simulation::reorder_bodies(const std::vector<std::uint32_t>& old_of_new) {
+  const std::size_t nb = old_of_new.size();
+  constexpr std::uint32_t kGone = 0xffffffffu;
   const SphereState old = spheres_;
-  std::vector<std::uint32_t> sphere_new_of_old(old.size());
+  std::vector<std::uint32_t> sphere_new_of_old(old.size(), kGone);
   std::vector<std::uint32_t> first{0};
   SphereState ns;
   for (std::size_t nbody = 0; nbody < nb; ++nbody) {
@@ -89,10 +96,29 @@ void Simulation::sort_spatially() {
   permute(bodies_.id, old_of_new);
   permute(bodies_.force_n, old_of_new);
   permute(bodies_.torque_n_m, old_of_new);
+  std::fill(index_of_id_.begin(), index_of_id_.end(), kGone);
   for (std::size_t b = 0; b < nb; ++b) index_of_id_[bodies_.id[b]] = static_cast<std::uint32_t>(b);
-  pairs_.renumber(sphere_new_of_old, spheres_);
-  wall_pairs_.renumber(sphere_new_of_old, spheres_);
-  rebuild_lists();
+  if (ready_) {
+    pairs_.renumber(sphere_new_of_old, spheres_);
+    wall_pairs_.renumber(sphere_new_of_old, spheres_);
+    const auto t = static_cast<std::size_t>(options_.threads);
+    thread_force_.assign(t, std::vector<Vec3>(nb));
+    thread_torque_.assign(t, std::vector<Vec3>(nb));
+    rebuild_lists();
+  }
+}
+
+void Simulation::remove_bodies(const std::function<bool(std::uint32_t index)>& remove) {
+  std::vector<std::uint32_t> keep;
+  for (std::uint32_t b = 0; b < bodies_.size(); ++b)
+    if (!remove(b)) keep.push_back(b);
+  if (keep.size() == bodies_.size()) return;
+  reorder_bodies(keep);
+  reference_energy_j_ = -1.0;
+  if (ready_) {
+    reference_energy_j_ = energy_budget_j();
+    reference_potential_j_ = potential_energy_j();
+  }
 }
 
 }  // namespace seedcal

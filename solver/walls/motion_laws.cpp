@@ -47,8 +47,8 @@ void Servo::advance(Wall& w, double, double dt) {
   const double error = target_ - measured_force_n(w);
   double v = w.contact_stiffness_n_m > 0.0 ? alpha_ * error / (w.contact_stiffness_n_m * dt) : v_max_;
   v = std::clamp(v, -v_max_, v_max_);
-  w.pose.velocity_m_s = v * dir_;
-  w.pose.origin_m += (v * dt) * dir_;
+  w.pose.velocity_m_s = v * dir_ + transverse_;
+  w.pose.origin_m += dt * w.pose.velocity_m_s;
 }
 
 }  // namespace seedcal

@@ -67,12 +67,16 @@ class Servo final : public WallMotion {
   void advance(Wall& w, double t, double dt) override;
   double max_speed_m_s(double) const override { return v_max_; }
   void set_target_force(double f) { target_ = f; }
+  // A velocity across the servo direction added to the servo motion (a shear-box lid that travels
+  // with the upper half).
+  void set_transverse_velocity(const Vec3& v) { transverse_ = v - v.dot(dir_) * dir_; }
   double target_force_n() const { return target_; }
   double measured_force_n(const Wall& w) const { return -w.force_n.dot(dir_); }
 
  private:
   Vec3 dir_;
   double target_, v_max_, alpha_;
+  Vec3 transverse_ = Vec3::Zero();
 };
 
 }  // namespace seedcal

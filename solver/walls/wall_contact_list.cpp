@@ -75,14 +75,21 @@ void WallContactList::renumber(const std::vector<std::uint32_t>& new_of_old,
     Vec3 t, r;
   };
   const bool rolling = !rolling_.empty();
-  std::vector<Entry> e(sphere_.size());
+  std::vector<Entry> e;
+  e.reserve(sphere_.size());
   for (std::size_t k = 0; k < sphere_.size(); ++k) {
     const std::uint32_t s = new_of_old[sphere_[k]];
-    e[k] = {spheres.body[s], s, primitive_[k], wall_[k], tangential_[k], rolling ? rolling_[k] : Vec3::Zero()};
+    if (s == 0xffffffffu) continue;  // a removed sphere: history dropped
+    e.push_back({spheres.body[s], s, primitive_[k], wall_[k], tangential_[k], rolling ? rolling_[k] : Vec3::Zero()});
   }
   std::sort(e.begin(), e.end(), [](const Entry& a, const Entry& b) {
     return std::tie(a.b, a.w, a.s, a.p) < std::tie(b.b, b.w, b.s, b.p);
   });
+  sphere_.resize(e.size());
+  primitive_.resize(e.size());
+  wall_.resize(e.size());
+  tangential_.resize(e.size());
+  if (rolling) rolling_.resize(e.size());
   for (std::size_t k = 0; k < e.size(); ++k) {
     sphere_[k] = e[k].s;
     primitive_[k] = e[k].p;

@@ -1,0 +1,144 @@
+#include "solver/scenes/direct_shear.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "solver/scenes/settle.hpp"
+#include "solver/walls/cylinder_shape.hpp"
+#include "solver/walls/motion_laws.hpp"
+
+namespace seedcal {
+
+DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
+  const auto wall_t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+  DirectShearResult res;
+  const double R = 0.5 * spec.diameter_m, H = spec.sample_height_m, half = 0.5 * H;
+  const double guide = spec.pour_height_factor * H;
+  const double area = std::numbers::pi * R * R;
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * (H + guide)));
+  Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
+                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+
+  // Lower ring with its floor (fixed); upper ring from mid-height up through the pour guide.
+  Wall lower;
+  lower.name = "lower_ring";
+  lower.shape = std::make_shared<CylinderShape>(R, half, true, true, false);
+  lower.material = spec.box_material;
+  sim.add_wall(lower);
+  Wall upper;
+  upper.name = "upper_ring";
+  upper.shape = std::make_shared<CylinderShape>(R, half + guide, true, false, false);
+  upper.material = spec.box_material;
+  upper.pose.origin_m = Vec3(0.0, 0.0, half);
+  sim.add_wall(upper);
+
+  // Pour: enough seeds to fill the sample at a solid fraction of 0.62 (more than any loose random
+  // packing reaches), in batches from the guide.
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  FactorySpec fs;
+  fs.body = spec.seeds.body;
+  fs.scale = spec.seeds.scale;
+  fs.region.kind = InsertionRegion::Kind::cylinder;
+  fs.region.radius_m = R;
+  fs.region.base_m = Vec3(0.0, 0.0, 0.5 * H);
+  fs.region.height_m = H + guide - 0.5 * H;
+  const double want = area * H * rho * 0.62;
+  double poured = 0.0;
+  for (int batch = 0; batch < 10 && poured < want; ++batch) {
+    FactorySpec b = fs;
+    b.total_mass_kg = want - poured;
+    b.max_attempts = 100000;
+    const FactoryResult r = insert_particles(sim, b);
+    poured += r.mass_kg;
+    if (r.placed == 0 || !run_for(sim, 0.1)) break;
+  }
+  SettleCriteria sc;
+  sc.max_time_s = 1.0;
+  sc.check_interval_s = 0.005;
+  if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
+  // Level the sample: remove seeds whose centre lies above the sample height.
+  sim.remove_bodies([&](std::uint32_t b) { return sim.bodies().position_m[b].z() > H; });
+  res.seeds = sim.bodies().size();
+
+  // Consolidate under a servo lid.
+  double top = 0.0;
+  for (std::size_t i = 0; i < sim.spheres().size(); ++i)
+    top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+  Wall lid;
+  lid.name = "lid";
+  lid.shape = std::make_shared<PlaneShape>(-Vec3::UnitZ());
+  lid.material = spec.box_material;
+  lid.pose.origin_m = Vec3(0.0, 0.0, top + 0.0005);
+  auto servo = std::make_shared<Servo>(-Vec3::UnitZ(), spec.normal_stress_pa * area, spec.lid_max_speed_m_s);
+  lid.motion = servo;
+  const std::size_t lid_index = sim.add_wall(lid);
+  const std::size_t upper_index = 1;
+  // Consolidated when the lid holds the stress to 1 % and has stopped moving (< 1 um/ms).
+  double t_end = sim.time_s() + spec.consolidation_max_time_s;
+  double last_z = sim.walls()[lid_index].pose.origin_m.z();
+  while (sim.failure().status == RunStatus::ok && sim.time_s() < t_end) {
+    if (!run_for(sim, 0.002)) break;
+    const Wall& l = sim.walls()[lid_index];
+    const double z = l.pose.origin_m.z();
+    const bool held = std::abs(servo->measured_force_n(l) / servo->target_force_n() - 1.0) < 0.01;
+    if (held && std::abs(z - last_z) < 2e-6) break;
+    last_z = z;
+  }
+
+  // Shear: the upper ring and the lid move along +x.
+  const Vec3 v(spec.shear_speed_m_s, 0.0, 0.0);
+  sim.walls()[upper_index].motion = std::make_shared<ConstantVelocity>(v);
+  servo->set_transverse_velocity(v);
+  const double z0 = sim.walls()[lid_index].pose.origin_m.z();
+  const double x0 = sim.walls()[upper_index].pose.origin_m.x();
+  const auto per_record = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(spec.record_interval_s / dt));
+  double sigma_sum = 0.0;
+  std::size_t n = 0;
+  res.run.stop_reason = "shear displacement reached";
+  while (sim.walls()[upper_index].pose.origin_m.x() - x0 < spec.shear_displacement_m) {
+    if (!sim.run(per_record)) {
+      res.run.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
+      break;
+    }
+    const Wall& up = sim.walls()[upper_index];
+    const Wall& l = sim.walls()[lid_index];
+    // Force the seeds exert on the moving half along -x resists the motion: shear force = -F_x.
+    const double tau = -(up.force_n.x() + l.force_n.x()) / area;
+    const double sigma = servo->measured_force_n(l) / area;
+    res.curve.push_back({up.pose.origin_m.x() - x0, tau, sigma, l.pose.origin_m.z()});
+    sigma_sum += sigma;
+    ++n;
+  }
+  res.run.failure = sim.failure();
+  for (const ShearSample& s : res.curve)
+    if (s.shear_stress_pa > res.shear_strength_pa) {
+      res.shear_strength_pa = s.shear_stress_pa;
+      res.displacement_at_peak_m = s.displacement_m;
+    }
+  res.mean_normal_stress_pa = n > 0 ? sigma_sum / static_cast<double>(n) : 0.0;
+  res.stress_ratio = res.mean_normal_stress_pa > 0 ? res.shear_strength_pa / res.mean_normal_stress_pa : 0.0;
+  res.dilation_m = res.curve.empty() ? 0.0 : res.curve.back().lid_height_m - z0;
+  // Inertial number with gamma_dot = v / d (shear band ~ one seed), d = the seed's bounding size.
+  double d = 0.0;
+  for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
+  res.inertial_number = spec.shear_speed_m_s / d * d * std::sqrt(rho / spec.normal_stress_pa);
+  const BodyState& B = sim.bodies();
+  for (std::size_t b = 0; b < B.size(); ++b) {
+    std::vector<std::pair<Vec3, double>> sp;
+    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
+      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
+    res.spheres.push_back(std::move(sp));
+  }
+  res.run.steps = sim.step_count();
+  res.run.bodies = B.size();
+  res.run.spheres = sim.spheres().size();
+  res.run.dt_s = dt;
+  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  return res;
+}
+
+}  // namespace seedcal

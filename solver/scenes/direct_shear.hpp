@@ -1,0 +1,55 @@
+#pragma once
+// The `direct_shear` scene: a strain-controlled circular shear box (the ZJ apparatus of the paper:
+// inner diameter 61.8 mm, sample 20 mm high split at mid-height).
+//
+// Protocol (docs/scenes/direct_shear.md): seeds are poured into the box (the upper ring continues
+// as a guide above the sample so the pour stays inside), settled, the surplus above the sample
+// height is removed by centroid, a servo lid consolidates the sample at the normal stress
+// (default 200 kPa) until the lid settles, then the upper ring and the lid move horizontally at
+// the shear speed for the shear displacement while the lid keeps the stress. Shear stress = the
+// horizontal force the seeds exert on the upper ring and the lid / the nominal area pi D^2 / 4;
+// shear strength = its peak. Also reported: the stress ratio tau/sigma, the dilation (lid rise)
+// curve, and the inertial number I = gamma_dot d sqrt(rho / sigma) with gamma_dot = v / d (a shear
+// band about one seed thick), which should stay below 1e-3 for a quasi-static test.
+#include "solver/scenes/seed_bed.hpp"
+
+namespace seedcal {
+
+struct DirectShearSpec {
+  PhysicsSpec physics;
+  TimeStepSpec time_step;
+  SeedSpec seeds;
+  std::uint16_t box_material = 0;
+  double diameter_m = 0.0618;
+  double sample_height_m = 0.020;
+  double normal_stress_pa = 2.0e5;
+  double shear_speed_m_s = 0.01;
+  double shear_displacement_m = 0.006;
+  double pour_height_factor = 3.0;   // guide height above the sample, in sample heights
+  double consolidation_max_time_s = 0.3;
+  double lid_max_speed_m_s = 0.1;
+  double record_interval_s = 2e-4;
+  int threads = 1;
+  std::uint64_t seed = 0;
+};
+
+struct ShearSample {
+  double displacement_m, shear_stress_pa, normal_stress_pa, lid_height_m;
+};
+
+struct DirectShearResult {
+  RunReport run;
+  double shear_strength_pa = 0.0;      // peak shear stress
+  double displacement_at_peak_m = 0.0;
+  double stress_ratio = 0.0;           // peak tau / mean sigma during shear
+  double mean_normal_stress_pa = 0.0;
+  double inertial_number = 0.0;
+  double dilation_m = 0.0;             // lid rise from the start of shear to the end
+  std::size_t seeds = 0;
+  std::vector<ShearSample> curve;
+  std::vector<std::vector<std::pair<Vec3, double>>> spheres;  // final state, for the picture
+};
+
+DirectShearResult run_direct_shear(const DirectShearSpec& spec);
+
+}  // namespace seedcal
