@@ -10,6 +10,7 @@ const std::map<std::string, SceneRunner>& scene_registry() {
       {"free_drop", run_free_drop_scene},
       {"bulk_density", run_bulk_density_scene},
       {"direct_shear", run_direct_shear_scene},
+      {"piling", run_piling_scene},
   };
   return kScenes;
 }

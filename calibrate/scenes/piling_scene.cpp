@@ -1,0 +1,74 @@
+// `kind = "piling"`: schema in docs/scenes/piling.md.
+#include <numbers>
+#include <sstream>
+
+#include "calibrate/config/seed_config.hpp"
+#include "calibrate/io/atomic_file.hpp"
+#include "calibrate/output/side_view_svg.hpp"
+#include "calibrate/scenes/scene_registry.hpp"
+#include "solver/scenes/piling.hpp"
+
+namespace seedcal {
+
+nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
+  SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
+  PilingSpec spec;
+  spec.physics = cfg.phys.physics;
+  spec.time_step = cfg.phys.time_step;
+  spec.seeds = cfg.seeds;
+  spec.threads = ctx.threads;
+  spec.seed = ctx.seed;
+  if (auto rig = rig_table(root, "piling", cfg.fidelity)) {
+    spec.plate_material = cfg.phys.material(*rig, "plate_material", rig->string("plate_material"));
+    spec.tube_material = cfg.phys.material(*rig, "tube_material", rig->string("tube_material"));
+    spec.tube_diameter_m = rig->number("tube_diameter_m", Range::closed(0.005, 5.0), spec.tube_diameter_m);
+    spec.fill_height_m = rig->number("fill_height_m", Range::closed(0.005, 5.0), spec.fill_height_m);
+    spec.lift_speed_m_s = rig->number("lift_speed_m_s", Range::closed(1e-5, 10.0), spec.lift_speed_m_s);
+    spec.azimuths = static_cast<int>(rig->integer("azimuths", 2, 72, spec.azimuths));
+    spec.window_lo = rig->number("fit_window_min", Range::closed(0.0, 0.9), spec.window_lo);
+    spec.window_hi = rig->number("fit_window_max", Range::closed(0.1, 1.0), spec.window_hi);
+    if (spec.window_lo >= spec.window_hi) rig->error("fit_window_min", "must be below fit_window_max");
+    spec.max_time_s = rig->number("max_time_s", Range::left_open(0.0, 100.0), spec.max_time_s);
+    rig->check_unknown_keys();
+  }
+  root.check_unknown_keys();
+  root.diagnostics().throw_if_any();
+
+  const PilingResult r = run_piling(spec);
+  nlohmann::json j;
+  j["index_key"] = "angle_of_repose_deg";
+  j["angle_of_repose_deg"] = r.angle_of_repose_deg;
+  j["angle_of_repose_sectors_sd_deg"] = r.angle_sd_deg;
+  j["sector_angles_deg"] = r.sector_angles_deg;
+  j["heap_radius_m"] = r.heap_radius_m;
+  j["heap_height_m"] = r.heap_height_m;
+  j["seeds"] = r.seeds;
+  j["fidelity"] = cfg.fidelity;
+  j["particle"] = cfg.particle_description;
+  add_run_report(j, r.run);
+  if (!ctx.out_dir.empty()) {
+    std::ostringstream csv;
+    csv << "sector,azimuth_deg,r_m,z_m\n";
+    for (std::size_t a = 0; a < r.profiles.size(); ++a)
+      for (const auto& [rr, z] : r.profiles[a])
+        csv << a << "," << 360.0 * static_cast<double>(a) / static_cast<double>(r.profiles.size()) << "," << rr << "," << z << "\n";
+    write_file_atomic(ctx.out_dir + "/piling_profile.csv", csv.str());
+    // Side view along x with the fits of the two opposite sectors 0 and n/2 (both sides).
+    SideView view;
+    view.title = "angle of repose " + std::to_string(r.angle_of_repose_deg) + " deg";
+    for (const auto& body : r.spheres)
+      for (const auto& [p, rad] : body) view.circles.push_back({project(p, Eigen::Vector3d::UnitX()), rad});
+    const std::size_t half = r.fits.size() / 2;
+    for (std::size_t a : {std::size_t{0}, half}) {
+      if (a >= r.fits.size() || !r.fits[a].ok) continue;
+      const double sign = a == 0 ? 1.0 : -1.0;
+      const double r0 = 0.2 * r.heap_radius_m, r1 = 0.9 * r.heap_radius_m;
+      view.lines.push_back({sign * r0, r.fits[a].intercept + r.fits[a].slope * r0, sign * r1,
+                            r.fits[a].intercept + r.fits[a].slope * r1, "#d62728", ""});
+    }
+    write_file_atomic(ctx.out_dir + "/piling.svg", render_svg(view));
+  }
+  return j;
+}
+
+}  // namespace seedcal

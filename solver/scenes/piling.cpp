@@ -1,0 +1,143 @@
+#include "solver/scenes/piling.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "solver/scenes/settle.hpp"
+#include "solver/walls/cylinder_shape.hpp"
+#include "solver/walls/motion_laws.hpp"
+
+namespace seedcal {
+
+PilingResult run_piling(const PilingSpec& spec) {
+  const auto wall_t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+  PilingResult res;
+  const double R = 0.5 * spec.tube_diameter_m;
+  const double tube_h = 2.0 * spec.fill_height_m;
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * tube_h));
+  Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
+                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+  Wall plate;
+  plate.name = "plate";
+  plate.shape = std::make_shared<PlaneShape>(Vec3::UnitZ());
+  plate.material = spec.plate_material;
+  sim.add_wall(plate);
+  Wall tube;
+  tube.name = "tube";
+  tube.shape = std::make_shared<CylinderShape>(R, tube_h, true, false, false);
+  tube.material = spec.tube_material;
+  const std::size_t tube_index = sim.add_wall(tube);
+
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  FactorySpec fs;
+  fs.body = spec.seeds.body;
+  fs.scale = spec.seeds.scale;
+  fs.region.kind = InsertionRegion::Kind::cylinder;
+  fs.region.radius_m = R;
+  fs.region.base_m = Vec3(0.0, 0.0, 0.3 * spec.fill_height_m);
+  fs.region.height_m = tube_h - 0.3 * spec.fill_height_m;
+  const double want = std::numbers::pi * R * R * spec.fill_height_m * rho * 0.55;
+  double poured = 0.0;
+  for (int batch = 0; batch < 20 && poured < want; ++batch) {
+    FactorySpec b = fs;
+    b.total_mass_kg = want - poured;
+    b.max_attempts = 100000;
+    const FactoryResult r = insert_particles(sim, b);
+    poured += r.mass_kg;
+    if (r.placed == 0 || !run_for(sim, 0.15)) break;
+  }
+  SettleCriteria sc;
+  sc.max_time_s = 1.5;
+  sc.check_interval_s = 0.005;
+  if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
+  res.seeds = sim.bodies().size();
+  double top = 0.0;
+  for (std::size_t i = 0; i < sim.spheres().size(); ++i)
+    top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+  // Lift the tube until its lower rim clears the fill by a seed size.
+  const double lift = top + 0.02;
+  const double t0 = sim.time_s();
+  sim.walls()[tube_index].motion = std::make_shared<Schedule>(
+      std::vector<Schedule::Segment>{{t0, t0 + lift / spec.lift_speed_m_s, Vec3(0, 0, spec.lift_speed_m_s)}});
+  if (sim.failure().status == RunStatus::ok) run_for(sim, lift / spec.lift_speed_m_s);
+  SettleResult heap;
+  if (sim.failure().status == RunStatus::ok) {
+    sc.max_time_s = spec.max_time_s;
+    sc.min_time_s = 0.1;
+    heap = run_until_settled(sim, sc);
+  }
+  res.run.failure = sim.failure();
+  res.run.stop_reason = sim.failure().status != RunStatus::ok
+                            ? std::string("guard: ") + to_string(sim.failure().status)
+                            : heap.reason;
+
+  // Profile per sector and line fits.
+  const auto& S = sim.spheres();
+  double d = 0.0;
+  for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
+  // Heap radius: the radius holding 95 % of the seeds (a few seeds that rolled away do not count).
+  std::vector<double> radial;
+  for (std::size_t b = 0; b < sim.bodies().size(); ++b)
+    radial.push_back(std::hypot(sim.bodies().position_m[b].x(), sim.bodies().position_m[b].y()));
+  std::sort(radial.begin(), radial.end());
+  if (!radial.empty()) res.heap_radius_m = radial[static_cast<std::size_t>(0.95 * static_cast<double>(radial.size() - 1))];
+  for (std::size_t i = 0; i < S.size(); ++i)
+    res.heap_height_m = std::max(res.heap_height_m, S.position_m[i].z() + S.radius_m[i]);
+  double sum = 0.0, sum2 = 0.0;
+  for (int a = 0; a < spec.azimuths; ++a) {
+    const double phi = 2.0 * std::numbers::pi * a / spec.azimuths;
+    const Vec3 dir(std::cos(phi), std::sin(phi), 0.0);
+    std::vector<std::pair<double, double>> pts;
+    for (std::size_t i = 0; i < S.size(); ++i) {
+      const Vec3& p = S.position_m[i];
+      const double along = p.x() * dir.x() + p.y() * dir.y();
+      const double across = -p.x() * dir.y() + p.y() * dir.x();
+      if (along > 0.0 && std::abs(across) < 0.5 * d) pts.push_back({along, p.z() + S.radius_m[i]});
+    }
+    const auto prof = upper_profile(pts, 0.5 * d);
+    // The sector's own heap height (its profile's top); fit where the side is between window_lo
+    // and window_hi of it, outward of the top: the foot and the rounded crest are left out.
+    double h = 0.0, r_top = 0.0;
+    for (const auto& [r, z] : prof)
+      if (z > h) { h = z; r_top = r; }
+    std::vector<double> xs, zs;
+    for (const auto& [r, z] : prof)
+      if (r >= r_top && z >= spec.window_lo * h && z <= spec.window_hi * h) {
+        xs.push_back(r);
+        zs.push_back(z);
+      }
+    const LineFit f = fit_line(xs, zs);
+    res.profiles.push_back(prof);
+    res.fits.push_back(f);
+    if (f.ok) {
+      const double ang = std::atan(-f.slope) * 180.0 / std::numbers::pi;
+      res.sector_angles_deg.push_back(ang);
+      sum += ang;
+      sum2 += ang * ang;
+    }
+  }
+  const double n = static_cast<double>(res.sector_angles_deg.size());
+  if (n > 0) {
+    res.angle_of_repose_deg = sum / n;
+    res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.angle_of_repose_deg * res.angle_of_repose_deg) / (n - 1))) : 0.0;
+  }
+  const BodyState& B = sim.bodies();
+  for (std::size_t b = 0; b < B.size(); ++b) {
+    std::vector<std::pair<Vec3, double>> sp;
+    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s) sp.push_back({S.position_m[s], S.radius_m[s]});
+    res.spheres.push_back(std::move(sp));
+  }
+  res.run.steps = sim.step_count();
+  res.run.bodies = B.size();
+  res.run.spheres = S.size();
+  res.run.dt_s = dt;
+  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  return res;
+}
+
+}  // namespace seedcal
