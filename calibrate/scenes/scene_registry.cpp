@@ -11,6 +11,7 @@ const std::map<std::string, SceneRunner>& scene_registry() {
       {"bulk_density", run_bulk_density_scene},
       {"direct_shear", run_direct_shear_scene},
       {"piling", run_piling_scene},
+      {"drum", run_drum_scene},
   };
   return kScenes;
 }

@@ -1,0 +1,137 @@
+#include "solver/scenes/drum.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include "solver/scenes/settle.hpp"
+#include "solver/walls/cylinder_shape.hpp"
+#include "solver/walls/motion_laws.hpp"
+
+namespace seedcal {
+
+double drum_fill_height(double radius_m, double filling_rate) {
+  // f(eps) = (eps - sin eps cos eps) / pi rises monotonically from 0 (eps = 0) to 1 (eps = pi):
+  // bisection to machine precision.
+  double lo = 0.0, hi = std::numbers::pi;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double f = (mid - std::sin(mid) * std::cos(mid)) / std::numbers::pi;
+    (f < filling_rate ? lo : hi) = mid;
+  }
+  return radius_m * (1.0 - std::cos(0.5 * (lo + hi)));
+}
+
+DrumResult run_drum(const DrumSpec& spec) {
+  const auto wall_t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
+  DrumResult res;
+  const double R = 0.5 * spec.diameter_m, D = spec.depth_m;
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double w = spec.speed_rpm * 2.0 * std::numbers::pi / 60.0;
+  res.froude_number = w * w * R / g;
+  res.fill_height_m = drum_fill_height(R, spec.filling_rate);
+  const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * R) + w * R);
+  Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
+                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+  // The drum: a closed cylinder whose axis (its frame's z) is the world y axis, centred on the
+  // origin; it turns about +y.
+  Wall drum;
+  drum.name = "drum";
+  drum.shape = std::make_shared<CylinderShape>(R, D, true, true, true);
+  drum.material = spec.drum_material;
+  drum.pose.orientation = Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitX()));  // z -> y
+  drum.pose.origin_m = Vec3(0.0, -0.5 * D, 0.0);
+  const std::size_t drum_index = sim.add_wall(drum);
+
+  const double mass = spec.filling_rate * std::numbers::pi * R * R * D * spec.bulk_density_kg_m3;
+  FactorySpec fs;
+  fs.body = spec.seeds.body;
+  fs.scale = spec.seeds.scale;
+  fs.region.lo_m = Vec3(-0.75 * R, -0.5 * D, -0.75 * R);
+  fs.region.hi_m = Vec3(0.75 * R, 0.5 * D, 0.6 * R);
+  double poured = 0.0;
+  for (int batch = 0; batch < 10 && poured < mass; ++batch) {
+    FactorySpec b = fs;
+    b.total_mass_kg = mass - poured;
+    b.max_attempts = 100000;
+    const FactoryResult r = insert_particles(sim, b);
+    poured += r.mass_kg;
+    if (r.placed == 0 || !run_for(sim, 0.15)) break;
+  }
+  SettleCriteria sc;
+  sc.max_time_s = 1.0;
+  sc.check_interval_s = 0.005;
+  if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
+  res.seeds = sim.bodies().size();
+
+  const double t0 = sim.time_s();
+  sim.walls()[drum_index].motion = std::make_shared<Rotation>(Vec3::UnitY(), Vec3::Zero(), w, sim.walls()[drum_index].pose);
+  // Rotation laws take the absolute time; shift so the turn starts now.
+  struct Delayed final : WallMotion {
+    std::shared_ptr<WallMotion> inner;
+    double start;
+    void advance(Wall& wl, double t, double h) override { inner->advance(wl, t - start, h); }
+    double max_speed_m_s(double e) const override { return inner->max_speed_m_s(e); }
+  };
+  auto delayed = std::make_shared<Delayed>();
+  delayed->inner = sim.walls()[drum_index].motion;
+  delayed->start = t0;
+  sim.walls()[drum_index].motion = delayed;
+
+  double d = 0.0;
+  for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
+  double sum = 0.0, sum2 = 0.0;
+  res.run.stop_reason = "all frames taken";
+  for (double tf : spec.frame_times_s) {
+    if (!run_for(sim, std::max(0.0, t0 + tf - sim.time_s()))) {
+      res.run.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
+      break;
+    }
+    std::vector<std::pair<double, double>> pts;
+    double xmin = 1e9, xmax = -1e9;
+    for (std::size_t i = 0; i < sim.spheres().size(); ++i) {
+      const Vec3& p = sim.spheres().position_m[i];
+      pts.push_back({p.x(), p.z() + sim.spheres().radius_m[i]});
+      xmin = std::min(xmin, p.x());
+      xmax = std::max(xmax, p.x());
+    }
+    const auto prof = upper_profile(pts, 0.5 * d);
+    const double mid = 0.5 * (xmin + xmax), half = 0.5 * spec.fit_width_fraction * (xmax - xmin);
+    std::vector<double> xs, zs;
+    for (const auto& [x, z] : prof)
+      if (std::abs(x - mid) <= half) {
+        xs.push_back(x);
+        zs.push_back(z);
+      }
+    DrumFrame fr{tf, 0.0, prof, fit_line(xs, zs)};
+    if (fr.fit.ok) {
+      fr.angle_deg = std::atan(std::abs(fr.fit.slope)) * 180.0 / std::numbers::pi;
+      sum += fr.angle_deg;
+      sum2 += fr.angle_deg * fr.angle_deg;
+    }
+    res.frames.push_back(fr);
+  }
+  const double n = static_cast<double>(res.frames.size());
+  if (n > 0) {
+    res.dynamic_angle_of_repose_deg = sum / n;
+    res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.dynamic_angle_of_repose_deg * res.dynamic_angle_of_repose_deg) / (n - 1))) : 0.0;
+  }
+  res.run.failure = sim.failure();
+  const BodyState& B = sim.bodies();
+  for (std::size_t b = 0; b < B.size(); ++b) {
+    std::vector<std::pair<Vec3, double>> sp;
+    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
+      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
+    res.spheres.push_back(std::move(sp));
+  }
+  res.run.steps = sim.step_count();
+  res.run.bodies = B.size();
+  res.run.spheres = sim.spheres().size();
+  res.run.dt_s = dt;
+  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  return res;
+}
+
+}  // namespace seedcal

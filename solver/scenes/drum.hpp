@@ -1,0 +1,58 @@
+#pragma once
+// The `drum` scene (dynamic angle of repose): a steel drum (inner diameter 200 mm, 50 mm deep in
+// the paper) turning about its horizontal axis, filled to a filling rate (11.04 % in the paper) of
+// its volume with seeds, turned at a set speed; the dynamic angle of repose is the slope of a line
+// fitted to the free surface at set times (3, 4 and 5 s in the paper), averaged.
+//
+// Filling (docs/scenes/drum.md): the paper's filling rate f relates the bed height h to the drum
+// radius Rc by f = (eps - sin eps cos eps) / pi, eps = arccos(1 - h / Rc); the scene reports h. The
+// seed mass is f x the drum volume x `bulk_density_kg_m3` (the bulk density of the seeds, a rig
+// key; the bulk_density scene measures it). Speed from `speed_rpm` (the Froude number
+// Fr = w^2 Rc / g is reported).
+// Surface: the seeds' spheres are projected on the plane normal to the axis; the upper envelope in
+// columns half a seed wide, restricted to the central `fit_width_fraction` of the bed's chord,
+// is fitted with a line; the angle is atan(|slope|).
+#include "solver/scenes/line_fit.hpp"
+#include "solver/scenes/seed_bed.hpp"
+
+namespace seedcal {
+
+struct DrumSpec {
+  PhysicsSpec physics;
+  TimeStepSpec time_step;
+  SeedSpec seeds;
+  std::uint16_t drum_material = 0;
+  double diameter_m = 0.2;
+  double depth_m = 0.05;
+  double filling_rate = 0.1104;
+  double bulk_density_kg_m3 = 680.0;
+  double speed_rpm = 5.0;
+  std::vector<double> frame_times_s = {3.0, 4.0, 5.0};  // after the drum starts turning
+  double fit_width_fraction = 0.6;
+  int threads = 1;
+  std::uint64_t seed = 0;
+};
+
+struct DrumFrame {
+  double time_s, angle_deg;
+  std::vector<std::pair<double, double>> surface;  // (x, z) in the drum's cross-section
+  LineFit fit;
+};
+
+struct DrumResult {
+  RunReport run;
+  double dynamic_angle_of_repose_deg = 0.0;
+  double angle_sd_deg = 0.0;
+  double froude_number = 0.0;
+  double fill_height_m = 0.0;
+  std::size_t seeds = 0;
+  std::vector<DrumFrame> frames;
+  std::vector<std::vector<std::pair<Vec3, double>>> spheres;  // at the last frame
+};
+
+// Bed height for a filling rate: solves f = (eps - sin eps cos eps) / pi for eps, h = Rc (1 - cos eps).
+double drum_fill_height(double radius_m, double filling_rate);
+
+DrumResult run_drum(const DrumSpec& spec);
+
+}  // namespace seedcal
