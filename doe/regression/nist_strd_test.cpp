@@ -4,19 +4,31 @@
 //
 // Tolerances are relative. NIST certifies 15 digits. Norris and Pontius are graded "lower
 // difficulty": a QR solve should keep 12 or more digits, so 1e-10 leaves two digits of margin for
-// other compilers and CPUs. Longley is "higher difficulty" (condition number ~1e8 after column
-// scaling); with Householder QR plus one refinement step we measured agreement to ~1e-12 on
-// coefficients, and check 1e-9 (9 significant digits, the level NIST's guidance calls good).
+// other compilers and CPUs. Longley is "higher difficulty" (nearly collinear regressors); with
+// Householder QR plus one refinement step the worst certified value measured agrees to 8.6e-12
+// (11.1 digits; Norris 13.6, Pontius 12.7 digits), and we check 1e-9 (9 significant digits), two
+// digits of margin for other compilers and CPUs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "doe/regression/anova.hpp"
 
 namespace seedcal::doe {
 namespace {
 
+// The worst relative error seen in the current test (printed as digits of accuracy, the LRE that
+// NIST's guidance uses: -log10 |got - want| / |want|).
+double worst = 0.0;
+void report(const char* name) {
+  std::printf("%s: worst relative error %.2e (%.1f digits)\n", name, worst, worst > 0 ? -std::log10(worst) : 16.0);
+  worst = 0.0;
+}
+
 void expect_rel(double got, double want, double rel, const std::string& what) {
+  worst = std::max(worst, std::fabs(got - want) / std::fabs(want));
   EXPECT_LE(std::fabs(got - want), rel * std::fabs(want)) << what << ": got " << got << ", certified " << want;
 }
 
@@ -47,6 +59,7 @@ TEST(NistStrd, NorrisLinear) {
   expect_rel(a.row("model").f, 5436385.54079785, rel, "F");
   EXPECT_EQ(a.row("model").df, 1);
   EXPECT_EQ(a.row("residual").df, 34);
+  report("Norris");
 }
 
 TEST(NistStrd, PontiusQuadratic) {
@@ -71,6 +84,7 @@ TEST(NistStrd, PontiusQuadratic) {
   expect_rel(a.row("model").ss, 15.6040343244198, rel, "regression SS");
   expect_rel(a.row("residual").ss, 0.155761768796992e-5, rel, "residual SS");
   expect_rel(a.row("model").f, 185330865.995752, rel, "F");
+  report("Pontius");
 }
 
 TEST(NistStrd, LongleyHigherDifficulty) {
@@ -107,6 +121,7 @@ TEST(NistStrd, LongleyHigherDifficulty) {
   expect_rel(a.row("residual").ss, 836424.055505915, rel, "residual SS");
   expect_rel(a.row("residual").ms, 92936.0061673238, rel, "residual MS");
   expect_rel(a.row("model").f, 330.285339234588, rel, "F");
+  report("Longley");
 }
 
 }  // namespace
