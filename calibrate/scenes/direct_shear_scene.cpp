@@ -28,6 +28,7 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
     spec.consolidation_max_time_s = rig->number("consolidation_max_time_s", Range::left_open(0.0, 100.0), spec.consolidation_max_time_s);
     spec.lid_max_speed_m_s = rig->number("lid_max_speed_m_s", Range::left_open(0.0, 10.0), spec.lid_max_speed_m_s);
     spec.record_interval_s = rig->number("record_interval_s", Range::left_open(0.0, 1.0), spec.record_interval_s);
+    spec.smoothing_m = rig->number("smoothing_m", Range::closed(0.0, 0.1), spec.smoothing_m);
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();
@@ -49,9 +50,10 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   add_run_report(j, r.run);
   if (!ctx.out_dir.empty()) {
     std::ostringstream csv;
-    csv << "displacement_m,shear_stress_pa,normal_stress_pa,lid_height_m\n";
+    csv << "displacement_m,shear_stress_pa,smoothed_shear_stress_pa,normal_stress_pa,lid_height_m\n";
     for (const ShearSample& s : r.curve)
-      csv << s.displacement_m << "," << s.shear_stress_pa << "," << s.normal_stress_pa << "," << s.lid_height_m << "\n";
+      csv << s.displacement_m << "," << s.shear_stress_pa << "," << s.smoothed_shear_stress_pa << ","
+          << s.normal_stress_pa << "," << s.lid_height_m << "\n";
     write_file_atomic(ctx.out_dir + "/direct_shear_curve.csv", csv.str());
     SideView view;
     view.title = "direct shear: peak " + std::to_string(r.shear_strength_pa / 1e3) + " kPa (shear plane in red)";

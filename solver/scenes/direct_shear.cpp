@@ -108,14 +108,30 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
     // Force the seeds exert on the moving half along -x resists the motion: shear force = -F_x.
     const double tau = -(up.force_n.x() + l.force_n.x()) / area;
     const double sigma = servo->measured_force_n(l) / area;
-    res.curve.push_back({up.pose.origin_m.x() - x0, tau, sigma, l.pose.origin_m.z()});
+    res.curve.push_back({up.pose.origin_m.x() - x0, tau, sigma, l.pose.origin_m.z(), 0.0});
     sigma_sum += sigma;
     ++n;
   }
   res.run.failure = sim.failure();
+  // Peak of the curve smoothed by a centred moving average over `smoothing_m` of displacement:
+  // the instantaneous wall force of a coarse sample carries contact-scale spikes that the lab's
+  // load cell and its reading rate average out.
+  for (std::size_t k = 0; k < res.curve.size(); ++k) {
+    double sum = 0.0;
+    int n_avg = 0;
+    for (std::size_t m = 0; m < res.curve.size(); ++m)
+      if (std::abs(res.curve[m].displacement_m - res.curve[k].displacement_m) <= 0.5 * spec.smoothing_m) {
+        sum += res.curve[m].shear_stress_pa;
+        ++n_avg;
+      }
+    res.curve[k].smoothed_shear_stress_pa = sum / n_avg;
+  }
+  // Failure as in ASTM D3080: the peak, or the stress at a relative displacement of 10 % of the
+  // box diameter when the curve has no peak before it.
   for (const ShearSample& s : res.curve)
-    if (s.shear_stress_pa > res.shear_strength_pa) {
-      res.shear_strength_pa = s.shear_stress_pa;
+    if (s.displacement_m <= spec.failure_displacement_fraction * spec.diameter_m &&
+        s.smoothed_shear_stress_pa > res.shear_strength_pa) {
+      res.shear_strength_pa = s.smoothed_shear_stress_pa;
       res.displacement_at_peak_m = s.displacement_m;
     }
   res.mean_normal_stress_pa = n > 0 ? sigma_sum / static_cast<double>(n) : 0.0;

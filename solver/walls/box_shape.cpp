@@ -10,13 +10,12 @@ bool Rectangle::nearest(const Vec3& c, double reach, WallHit& hit) const {
   const Vec3 r = c - centre;
   const double a = r.dot(u), b = r.dot(v), h = r.dot(n);
   if (std::abs(a) <= hu && std::abs(b) <= hv) {
-    if (h >= reach) return false;
-    hit.distance = h;  // signed: a sphere that crossed the face is pushed back
-    hit.normal = -n;
+    if (std::abs(h) >= reach) return false;
+    hit.distance = std::abs(h);  // a thin face: touched from either side
+    hit.normal = h >= 0.0 ? Vec3(-n) : n;
     hit.point = c - h * n;
     return true;
   }
-  if (h < 0.0) return false;  // behind the face and outside its outline: not this face's business
   const Vec3 p = centre + std::clamp(a, -hu, hu) * u + std::clamp(b, -hv, hv) * v;
   const Vec3 to = p - c;
   const double d = to.norm();

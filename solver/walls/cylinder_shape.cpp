@@ -28,9 +28,11 @@ bool CylinderShape::side(const Vec3& c, double reach, WallHit& hit) const {
   const Vec3 radial = rho > 1e-300 ? Vec3(c.x() / rho, c.y() / rho, 0.0) : Vec3::UnitX();
   if (c.z() >= 0.0 && c.z() <= length_) {
     const double d = inside_ ? radius_ - rho : rho - radius_;  // signed, > 0 on the particle side
-    if (d >= reach) return false;
-    hit.distance = d;
-    hit.normal = inside_ ? radial : Vec3(-radial);
+    if (std::abs(d) >= reach) return false;
+    // A finite wall is a thin shell: a sphere on its back side (e.g. one that has moved out over the
+    // rim of a sheared ring) touches it from there, instead of being pulled through.
+    hit.distance = std::abs(d);
+    hit.normal = (inside_ == (d >= 0.0)) ? radial : Vec3(-radial);
     hit.point = Vec3(radius_ * radial.x(), radius_ * radial.y(), c.z());
     return true;
   }
@@ -50,9 +52,9 @@ bool CylinderShape::cap(double z0, double inward, const Vec3& c, double reach, W
   const double rho = std::hypot(c.x(), c.y());
   if (rho <= radius_) {
     const double d = inward * (c.z() - z0);
-    if (d >= reach) return false;
-    hit.distance = d;
-    hit.normal = Vec3(0.0, 0.0, -inward);
+    if (std::abs(d) >= reach) return false;
+    hit.distance = std::abs(d);  // thin shell, as the lateral surface
+    hit.normal = Vec3(0.0, 0.0, d >= 0.0 ? -inward : inward);
     hit.point = Vec3(c.x(), c.y(), z0);
     return true;
   }

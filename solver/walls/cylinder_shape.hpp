@@ -4,9 +4,11 @@
 // outside. Optional end caps (discs of the same radius) at z = 0 and z = length_m.
 // Primitives: 0 = lateral surface, 1 = cap at z = 0, 2 = cap at z = length_m.
 //
-// Nearest points: within the axial extent the lateral surface is a half-space in the radial
-// direction (a sphere that crossed it is pushed back, no tunnelling); beyond it the nearest point is
-// on the rim circle. A cap is a half-space within its radius and its rim beyond.
+// Nearest points: a finite wall is a thin shell. Within the axial extent the lateral surface is
+// touched from whichever side the sphere centre is on (a sheared ring's rim must not pull in a
+// sphere that sits outside it); beyond it the nearest point is on the rim circle. A cap likewise
+// within its radius, its rim beyond. (Infinite planes, by contrast, are half-spaces.) A sphere
+// would need to cross a whole radius in one step to tunnel through a shell.
 #include "solver/walls/wall.hpp"
 
 namespace seedcal {
