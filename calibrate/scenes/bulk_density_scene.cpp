@@ -1,8 +1,6 @@
 // `kind = "bulk_density"`: schema in docs/scenes/bulk_density.md.
-#include "calibrate/config/seed_config.hpp"
 #include "calibrate/io/atomic_file.hpp"
-#include "calibrate/output/side_view_svg.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
+#include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/bulk_density.hpp"
 
 namespace seedcal {
@@ -10,11 +8,7 @@ namespace seedcal {
 nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   BulkDensitySpec spec;
-  spec.physics = cfg.phys.physics;
-  spec.time_step = cfg.phys.time_step;
-  spec.seeds = cfg.seeds;
-  spec.threads = ctx.threads;
-  spec.seed = ctx.seed;
+  fill_seed_spec(spec, cfg, ctx);
   if (auto rig = rig_table(root, "bulk_density", cfg.fidelity)) {
     spec.container_m = rig->vec3("container_m", Range::closed(0.005, 10.0), true).value_or(spec.container_m);
     spec.wall_material = cfg.phys.material(*rig, "wall_material", rig->string("wall_material"));
@@ -36,9 +30,7 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
   j["seeds_poured"] = r.seeds_poured;
   j["mass_inside_kg"] = r.mass_inside_kg;
   j["container_m"] = {spec.container_m.x(), spec.container_m.y(), spec.container_m.z()};
-  j["fidelity"] = cfg.fidelity;
-  j["particle"] = cfg.particle_description;
-  add_run_report(j, r.run);
+  add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
     // Raw data: every seed's centre and whether it counted; picture: side view with the rim.
     std::string csv = "x_m,y_m,z_m,inside\n";

@@ -1,10 +1,8 @@
 // `kind = "direct_shear"`: schema in docs/scenes/direct_shear.md.
 #include <sstream>
 
-#include "calibrate/config/seed_config.hpp"
 #include "calibrate/io/atomic_file.hpp"
-#include "calibrate/output/side_view_svg.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
+#include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/direct_shear.hpp"
 
 namespace seedcal {
@@ -12,11 +10,7 @@ namespace seedcal {
 nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   DirectShearSpec spec;
-  spec.physics = cfg.phys.physics;
-  spec.time_step = cfg.phys.time_step;
-  spec.seeds = cfg.seeds;
-  spec.threads = ctx.threads;
-  spec.seed = ctx.seed;
+  fill_seed_spec(spec, cfg, ctx);
   if (auto rig = rig_table(root, "direct_shear", cfg.fidelity)) {
     spec.box_material = cfg.phys.material(*rig, "box_material", rig->string("box_material"));
     spec.diameter_m = rig->number("diameter_m", Range::closed(0.005, 2.0), spec.diameter_m);
@@ -45,9 +39,7 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   j["inertial_number"] = r.inertial_number;
   j["dilation_m"] = r.dilation_m;
   j["seeds"] = r.seeds;
-  j["fidelity"] = cfg.fidelity;
-  j["particle"] = cfg.particle_description;
-  add_run_report(j, r.run);
+  add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
     std::ostringstream csv;
     csv << "displacement_m,shear_stress_pa,smoothed_shear_stress_pa,normal_stress_pa,lid_height_m\n";
@@ -57,8 +49,7 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
     write_file_atomic(ctx.out_dir + "/direct_shear_curve.csv", csv.str());
     SideView view;
     view.title = "direct shear: peak " + std::to_string(r.shear_strength_pa / 1e3) + " kPa (shear plane in red)";
-    for (const auto& body : r.spheres)
-      for (const auto& [p, rad] : body) view.circles.push_back({project(p, Eigen::Vector3d::UnitX()), rad});
+    add_spheres(view, r.spheres);
     const double R = 0.5 * spec.diameter_m;
     view.lines.push_back({-R, 0.5 * spec.sample_height_m, R + spec.shear_displacement_m, 0.5 * spec.sample_height_m, "#d62728", "shear plane"});
     write_file_atomic(ctx.out_dir + "/direct_shear.svg", render_svg(view));

@@ -1,10 +1,8 @@
 // `kind = "drum"`: schema in docs/scenes/drum.md.
 #include <sstream>
 
-#include "calibrate/config/seed_config.hpp"
 #include "calibrate/io/atomic_file.hpp"
-#include "calibrate/output/side_view_svg.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
+#include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/drum.hpp"
 
 namespace seedcal {
@@ -12,11 +10,7 @@ namespace seedcal {
 nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   DrumSpec spec;
-  spec.physics = cfg.phys.physics;
-  spec.time_step = cfg.phys.time_step;
-  spec.seeds = cfg.seeds;
-  spec.threads = ctx.threads;
-  spec.seed = ctx.seed;
+  fill_seed_spec(spec, cfg, ctx);
   if (auto rig = rig_table(root, "drum", cfg.fidelity)) {
     spec.drum_material = cfg.phys.material(*rig, "drum_material", rig->string("drum_material"));
     spec.diameter_m = rig->number("diameter_m", Range::closed(0.01, 10.0), spec.diameter_m);
@@ -43,9 +37,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   j["froude_number"] = r.froude_number;
   j["fill_height_m"] = r.fill_height_m;
   j["seeds"] = r.seeds;
-  j["fidelity"] = cfg.fidelity;
-  j["particle"] = cfg.particle_description;
-  add_run_report(j, r.run);
+  add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
     std::ostringstream csv;
     csv << "time_s,x_m,z_m\n";
@@ -55,8 +47,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
     SideView view;
     view.title = "drum " + std::to_string(spec.speed_rpm) + " rpm: dynamic angle " +
                  std::to_string(r.dynamic_angle_of_repose_deg) + " deg";
-    for (const auto& body : r.spheres)
-      for (const auto& [p, rad] : body) view.circles.push_back({project(p, Eigen::Vector3d::UnitX()), rad});
+    add_spheres(view, r.spheres);
     if (!r.frames.empty() && r.frames.back().fit.ok) {
       const LineFit& f = r.frames.back().fit;
       const double x0 = -0.4 * spec.diameter_m, x1 = 0.4 * spec.diameter_m;

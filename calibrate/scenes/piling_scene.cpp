@@ -2,10 +2,8 @@
 #include <numbers>
 #include <sstream>
 
-#include "calibrate/config/seed_config.hpp"
 #include "calibrate/io/atomic_file.hpp"
-#include "calibrate/output/side_view_svg.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
+#include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/piling.hpp"
 
 namespace seedcal {
@@ -13,11 +11,7 @@ namespace seedcal {
 nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   PilingSpec spec;
-  spec.physics = cfg.phys.physics;
-  spec.time_step = cfg.phys.time_step;
-  spec.seeds = cfg.seeds;
-  spec.threads = ctx.threads;
-  spec.seed = ctx.seed;
+  fill_seed_spec(spec, cfg, ctx);
   if (auto rig = rig_table(root, "piling", cfg.fidelity)) {
     spec.plate_material = cfg.phys.material(*rig, "plate_material", rig->string("plate_material"));
     spec.tube_material = cfg.phys.material(*rig, "tube_material", rig->string("tube_material"));
@@ -43,9 +37,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   j["heap_radius_m"] = r.heap_radius_m;
   j["heap_height_m"] = r.heap_height_m;
   j["seeds"] = r.seeds;
-  j["fidelity"] = cfg.fidelity;
-  j["particle"] = cfg.particle_description;
-  add_run_report(j, r.run);
+  add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
     std::ostringstream csv;
     csv << "sector,azimuth_deg,r_m,z_m\n";
@@ -56,8 +48,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
     // Side view along x with the fits of the two opposite sectors 0 and n/2 (both sides).
     SideView view;
     view.title = "angle of repose " + std::to_string(r.angle_of_repose_deg) + " deg";
-    for (const auto& body : r.spheres)
-      for (const auto& [p, rad] : body) view.circles.push_back({project(p, Eigen::Vector3d::UnitX()), rad});
+    add_spheres(view, r.spheres);
     const std::size_t half = r.fits.size() / 2;
     for (std::size_t a : {std::size_t{0}, half}) {
       if (a >= r.fits.size() || !r.fits[a].ok) continue;

@@ -60,7 +60,6 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   res.run.stop_reason = sim.failure().status != RunStatus::ok
                             ? std::string("guard: ") + to_string(sim.failure().status)
                             : st.reason;
-  res.run.failure = sim.failure();
   // Strike off at the rim by centroid.
   const BodyState& B = sim.bodies();
   for (std::size_t b = 0; b < B.size(); ++b) {
@@ -68,21 +67,13 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
       ++res.seeds_inside;
       res.mass_inside_kg += B.mass_kg[b];
     }
-    std::vector<std::pair<Vec3, double>> sp;
-    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
-      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
-    res.spheres.push_back(std::move(sp));
     res.centres.push_back(B.position_m[b]);
   }
   const double volume = c.x() * c.y() * c.z();
   res.bulk_density_kg_m3 = res.mass_inside_kg / volume;
   res.solid_fraction = res.bulk_density_kg_m3 / rho;
-  res.run.steps = sim.step_count();
-  res.run.bodies = B.size();
-  res.run.spheres = sim.spheres().size();
-  res.run.dt_s = dt;
-  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
-  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  res.spheres = body_spheres(sim);
+  finish_report(res.run, sim, cpu0, wall_t0);
   return res;
 }
 

@@ -45,16 +45,7 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.5 * H);
   fs.region.height_m = H + guide - 0.5 * H;
-  const double want = area * H * rho * 0.62;
-  double poured = 0.0;
-  for (int batch = 0; batch < 10 && poured < want; ++batch) {
-    FactorySpec b = fs;
-    b.total_mass_kg = want - poured;
-    b.max_attempts = 100000;
-    const FactoryResult r = insert_particles(sim, b);
-    poured += r.mass_kg;
-    if (r.placed == 0 || !run_for(sim, 0.1)) break;
-  }
+  pour_seeds(sim, fs, area * H * rho * 0.62, 10, 0.1);
   SettleCriteria sc;
   sc.max_time_s = 1.0;
   sc.check_interval_s = 0.005;
@@ -141,19 +132,8 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   double d = 0.0;
   for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
   res.inertial_number = spec.shear_speed_m_s / d * d * std::sqrt(rho / spec.normal_stress_pa);
-  const BodyState& B = sim.bodies();
-  for (std::size_t b = 0; b < B.size(); ++b) {
-    std::vector<std::pair<Vec3, double>> sp;
-    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
-      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
-    res.spheres.push_back(std::move(sp));
-  }
-  res.run.steps = sim.step_count();
-  res.run.bodies = B.size();
-  res.run.spheres = sim.spheres().size();
-  res.run.dt_s = dt;
-  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
-  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  res.spheres = body_spheres(sim);
+  finish_report(res.run, sim, cpu0, wall_t0);
   return res;
 }
 

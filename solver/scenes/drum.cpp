@@ -50,15 +50,7 @@ DrumResult run_drum(const DrumSpec& spec) {
   fs.scale = spec.seeds.scale;
   fs.region.lo_m = Vec3(-0.75 * R, -0.5 * D, -0.75 * R);
   fs.region.hi_m = Vec3(0.75 * R, 0.5 * D, 0.6 * R);
-  double poured = 0.0;
-  for (int batch = 0; batch < 10 && poured < mass; ++batch) {
-    FactorySpec b = fs;
-    b.total_mass_kg = mass - poured;
-    b.max_attempts = 100000;
-    const FactoryResult r = insert_particles(sim, b);
-    poured += r.mass_kg;
-    if (r.placed == 0 || !run_for(sim, 0.15)) break;
-  }
+  pour_seeds(sim, fs, mass, 10, 0.15);
   SettleCriteria sc;
   sc.max_time_s = 1.0;
   sc.check_interval_s = 0.005;
@@ -118,19 +110,8 @@ DrumResult run_drum(const DrumSpec& spec) {
     res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.dynamic_angle_of_repose_deg * res.dynamic_angle_of_repose_deg) / (n - 1))) : 0.0;
   }
   res.run.failure = sim.failure();
-  const BodyState& B = sim.bodies();
-  for (std::size_t b = 0; b < B.size(); ++b) {
-    std::vector<std::pair<Vec3, double>> sp;
-    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
-      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
-    res.spheres.push_back(std::move(sp));
-  }
-  res.run.steps = sim.step_count();
-  res.run.bodies = B.size();
-  res.run.spheres = sim.spheres().size();
-  res.run.dt_s = dt;
-  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
-  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  res.spheres = body_spheres(sim);
+  finish_report(res.run, sim, cpu0, wall_t0);
   return res;
 }
 

@@ -40,16 +40,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.3 * spec.fill_height_m);
   fs.region.height_m = tube_h - 0.3 * spec.fill_height_m;
-  const double want = std::numbers::pi * R * R * spec.fill_height_m * rho * 0.55;
-  double poured = 0.0;
-  for (int batch = 0; batch < 20 && poured < want; ++batch) {
-    FactorySpec b = fs;
-    b.total_mass_kg = want - poured;
-    b.max_attempts = 100000;
-    const FactoryResult r = insert_particles(sim, b);
-    poured += r.mass_kg;
-    if (r.placed == 0 || !run_for(sim, 0.15)) break;
-  }
+  pour_seeds(sim, fs, std::numbers::pi * R * R * spec.fill_height_m * rho * 0.55, 20, 0.15);
   SettleCriteria sc;
   sc.max_time_s = 1.5;
   sc.check_interval_s = 0.005;
@@ -70,7 +61,6 @@ PilingResult run_piling(const PilingSpec& spec) {
     sc.min_time_s = 0.1;
     heap = run_until_settled(sim, sc);
   }
-  res.run.failure = sim.failure();
   res.run.stop_reason = sim.failure().status != RunStatus::ok
                             ? std::string("guard: ") + to_string(sim.failure().status)
                             : heap.reason;
@@ -125,18 +115,8 @@ PilingResult run_piling(const PilingSpec& spec) {
     res.angle_of_repose_deg = sum / n;
     res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.angle_of_repose_deg * res.angle_of_repose_deg) / (n - 1))) : 0.0;
   }
-  const BodyState& B = sim.bodies();
-  for (std::size_t b = 0; b < B.size(); ++b) {
-    std::vector<std::pair<Vec3, double>> sp;
-    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s) sp.push_back({S.position_m[s], S.radius_m[s]});
-    res.spheres.push_back(std::move(sp));
-  }
-  res.run.steps = sim.step_count();
-  res.run.bodies = B.size();
-  res.run.spheres = S.size();
-  res.run.dt_s = dt;
-  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
-  res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+  res.spheres = body_spheres(sim);
+  finish_report(res.run, sim, cpu0, wall_t0);
   return res;
 }
 

@@ -26,6 +26,44 @@ SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int thre
   return opt;
 }
 
+double pour_seeds(Simulation& sim, const FactorySpec& spec, double mass_kg, int batches, double fall_s) {
+  double poured = 0.0;
+  for (int batch = 0; batch < batches && poured < mass_kg; ++batch) {
+    FactorySpec b = spec;
+    b.total_mass_kg = mass_kg - poured;
+    b.max_attempts = 100000;
+    const FactoryResult r = insert_particles(sim, b);
+    poured += r.mass_kg;
+    if (r.placed == 0) break;
+    const auto steps = static_cast<std::uint64_t>(fall_s / sim.options().dt_s);
+    if (!sim.run(steps)) break;
+  }
+  return poured;
+}
+
+std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation& sim) {
+  const BodyState& B = sim.bodies();
+  std::vector<std::vector<std::pair<Vec3, double>>> out;
+  for (std::size_t b = 0; b < B.size(); ++b) {
+    std::vector<std::pair<Vec3, double>> sp;
+    for (std::uint32_t s = B.first_sphere[b]; s < B.first_sphere[b + 1]; ++s)
+      sp.push_back({sim.spheres().position_m[s], sim.spheres().radius_m[s]});
+    out.push_back(std::move(sp));
+  }
+  return out;
+}
+
+void finish_report(RunReport& r, const Simulation& sim, double cpu0_s,
+                   std::chrono::steady_clock::time_point wall_t0) {
+  r.failure = sim.failure();
+  r.steps = sim.step_count();
+  r.bodies = sim.bodies().size();
+  r.spheres = sim.spheres().size();
+  r.dt_s = sim.options().dt_s;
+  r.cpu_seconds = process_cpu_seconds() - cpu0_s;
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
+}
+
 double seed_volume_m3(const SeedSpec& seeds, double density_kg_m3) {
   // E[s^3] of the (truncated) normal is close to mean^3 + 3 mean sd^2.
   const double m = seeds.scale.mean, s = seeds.scale.sd;

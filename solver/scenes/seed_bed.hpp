@@ -1,6 +1,9 @@
 #pragma once
 // Shared by the seed scenes: the time step for a particle template and its scale range, and the
 // insertion of seeds by the particle factory.
+#include <chrono>
+#include <vector>
+
 #include "solver/scenes/scene_common.hpp"
 #include "solver/sim/particle_factory.hpp"
 
@@ -19,6 +22,17 @@ double seed_time_step(const PhysicsSpec& physics, const TimeStepSpec& ts, const 
 
 // Simulation options common to the seed scenes.
 SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed);
+
+// Pours seeds with the factory in up to `batches` batches until `mass_kg` is placed, letting each
+// batch fall for `fall_s` to make room for the next. Returns the mass placed.
+double pour_seeds(Simulation& sim, const FactorySpec& spec, double mass_kg, int batches, double fall_s);
+
+// World spheres of every body (for pictures).
+std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation& sim);
+
+// Fills the counters and timings of a scene's run report.
+void finish_report(RunReport& r, const Simulation& sim, double cpu0_s,
+                   std::chrono::steady_clock::time_point wall_t0);
 
 // Mean volume of one seed (template volume x E[s^3]), m3, from the template's mass and density.
 double seed_volume_m3(const SeedSpec& seeds, double density_kg_m3);
