@@ -17,13 +17,7 @@ bool Rectangle::nearest(const Vec3& c, double reach, WallHit& hit) const {
     return true;
   }
   const Vec3 p = centre + std::clamp(a, -hu, hu) * u + std::clamp(b, -hv, hv) * v;
-  const Vec3 to = p - c;
-  const double d = to.norm();
-  if (d >= reach || d <= 0.0) return false;
-  hit.distance = d;
-  hit.normal = to / d;
-  hit.point = p;
-  return true;
+  return point_hit(c, p, reach, hit);
 }
 
 BoxShape::BoxShape(const Vec3& s, bool open_top) {

@@ -38,13 +38,7 @@ bool CylinderShape::side(const Vec3& c, double reach, WallHit& hit) const {
   }
   // Beyond the axial extent: the rim circle.
   const Vec3 rim(radius_ * radial.x(), radius_ * radial.y(), std::clamp(c.z(), 0.0, length_));
-  const Vec3 to = rim - c;
-  const double d = to.norm();
-  if (d >= reach || d <= 0.0) return false;
-  hit.distance = d;
-  hit.normal = to / d;
-  hit.point = rim;
-  return true;
+  return point_hit(c, rim, reach, hit);
 }
 
 // A disc at z = z0; `inward` is the side particles live on (+1: z > z0).
@@ -59,13 +53,7 @@ bool CylinderShape::cap(double z0, double inward, const Vec3& c, double reach, W
     return true;
   }
   const Vec3 rim(radius_ * c.x() / rho, radius_ * c.y() / rho, z0);
-  const Vec3 to = rim - c;
-  const double d = to.norm();
-  if (d >= reach || d <= 0.0) return false;
-  hit.distance = d;
-  hit.normal = to / d;
-  hit.point = rim;
-  return true;
+  return point_hit(c, rim, reach, hit);
 }
 
 }  // namespace seedcal

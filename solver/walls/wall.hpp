@@ -21,6 +21,18 @@ struct WallHit {
   Vec3 point;       // nearest surface point
 };
 
+// Contact with a single surface point p (an edge, a rim, a corner): fills `hit` when the sphere
+// centre c is within `reach` of it.
+inline bool point_hit(const Vec3& c, const Vec3& p, double reach, WallHit& hit) {
+  const Vec3 to = p - c;
+  const double d = to.norm();
+  if (d >= reach || d <= 0.0) return false;
+  hit.distance = d;
+  hit.normal = to / d;
+  hit.point = p;
+  return true;
+}
+
 class WallShape {
  public:
   virtual ~WallShape() = default;
