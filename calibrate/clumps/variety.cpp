@@ -1,5 +1,6 @@
 #include "calibrate/clumps/variety.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 
@@ -26,10 +27,13 @@ std::string variety_path(const std::string& name_or_path) {
     tried.push_back(p.string());
     if (fs::exists(p)) return p.string();
   }
-  std::string avail;
+  std::vector<std::string> names;
   if (fs::is_directory("data/varieties"))
     for (const auto& e : fs::directory_iterator("data/varieties"))
-      if (e.path().extension() == ".toml") avail += (avail.empty() ? "" : ", ") + e.path().stem().string();
+      if (e.path().extension() == ".toml") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  std::string avail;
+  for (const auto& n : names) avail += (avail.empty() ? "" : ", ") + n;
   std::string msg = "--variety " + name_or_path + ": no such variety (looked for";
   for (const auto& t : tried) msg += " " + t;
   msg += ")";

@@ -1,0 +1,219 @@
+// Shapes, fills, clump files, varieties, moisture fits and the size distribution.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "calibrate/cli/errors.hpp"
+#include "calibrate/clumps/clump_build.hpp"
+#include "calibrate/clumps/fill.hpp"
+#include "calibrate/clumps/moisture.hpp"
+#include "calibrate/clumps/size_distribution.hpp"
+
+namespace seedcal {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+const EllipsoidSpec kJ1{9.63e-3, 9.11e-3, 7.94e-3, 0.0, 0.85};  // Table 1 means, Jinong 1
+
+TEST(SeedShape, EllipsoidVolumeAndLineOverlapAgree) {
+  const EllipsoidShape e(kJ1);
+  EXPECT_NEAR(e.volume_m3(), kPi / 6 * 9.63e-3 * 9.11e-3 * 7.94e-3, 1e-20);
+  // The line-based overlap of the ellipsoid with itself-as-a-sphere: a sphere filling the whole
+  // box contains the ellipsoid, so intersection = ellipsoid; the midpoint rule across lines errs
+  // by O(n^-1.5): 2e-4 at n = 512.
+  const Overlap o = shape_overlap(e, {{Vec3::Zero(), 6e-3}}, 512);
+  EXPECT_NEAR(o.intersection_m3 / e.volume_m3(), 1.0, 2e-4);
+  EXPECT_NEAR(o.clump_m3 / (4.0 / 3 * kPi * 216e-9), 1.0, 2e-4);
+}
+
+TEST(SeedShape, HilumBumpVolumeMatchesAnIndependentEstimate) {
+  EllipsoidSpec s = kJ1;
+  s.hilum_radius_m = 1.5e-3;
+  const EllipsoidShape e(s);
+  EXPECT_GT(e.volume_m3(), EllipsoidShape(kJ1).volume_m3());
+  // Independent: the shape's chords integrated over a fine line grid (error ~1e-4 at n = 1024).
+  const Overlap o = shape_overlap(e, {{Vec3(1e-3, 0, 0), 1e-5}}, 1024);
+  EXPECT_NEAR(o.shape_m3 / e.volume_m3(), 1.0, 2e-4);
+  EXPECT_TRUE(e.inside(Vec3(0.85 * 4.815e-3 + 1.4e-3, 0, 0)));
+  EXPECT_GT(e.bounds().hi.x(), 4.815e-3);
+}
+
+std::vector<std::array<Vec3, 3>> cube(double h) {  // outward-oriented closed cube of half-edge h
+  std::vector<std::array<Vec3, 3>> t;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sgn = -1; sgn <= 1; sgn += 2) {
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      auto v = [&](double u, double w) { Vec3 p; p[axis] = sgn * h; p[a] = u * h; p[b] = w * h; return p; };
+      if (sgn > 0) { t.push_back({v(-1, -1), v(1, -1), v(1, 1)}); t.push_back({v(-1, -1), v(1, 1), v(-1, 1)}); }
+      else { t.push_back({v(-1, -1), v(1, 1), v(1, -1)}); t.push_back({v(-1, -1), v(-1, 1), v(1, 1)}); }
+    }
+  return t;
+}
+
+TEST(SeedShape, StlCubeBinaryAndAsciiAndOpenMeshRejected) {
+  const auto tris = cube(2e-3);
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string ascii = (dir / "seedcal_cube_ascii.stl").string(), bin = (dir / "seedcal_cube_bin.stl").string();
+  {
+    std::ofstream o(ascii);
+    o << "solid cube\n";
+    for (const auto& t : tris) {
+      o << " facet normal 0 0 0\n  outer loop\n";
+      for (const auto& v : t) o << "   vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
+      o << "  endloop\n endfacet\n";
+    }
+    o << "endsolid cube\n";
+  }
+  {
+    std::ofstream o(bin, std::ios::binary);
+    char header[80] = {};
+    o.write(header, 80);
+    const std::uint32_t n = static_cast<std::uint32_t>(tris.size());
+    o.write(reinterpret_cast<const char*>(&n), 4);
+    for (const auto& t : tris) {
+      float f[12] = {};
+      for (int v = 0; v < 3; ++v)
+        for (int c = 0; c < 3; ++c) f[3 + 3 * v + c] = static_cast<float>(t[v][c]);
+      o.write(reinterpret_cast<const char*>(f), 48);
+      o.write("\0\0", 2);
+    }
+  }
+  for (const auto& path : {ascii, bin}) {
+    const MeshShape m = MeshShape::from_stl(path);
+    EXPECT_NEAR(m.volume_m3() / 64e-9, 1.0, 1e-6) << path;
+    EXPECT_TRUE(m.inside(Vec3(1.9e-3, -1.9e-3, 0.5e-3)));
+    EXPECT_FALSE(m.inside(Vec3(2.1e-3, 0, 0)));
+    const Overlap o = shape_overlap(m, {{Vec3::Zero(), 1e-3}}, 256);
+    EXPECT_NEAR(o.shape_m3 / 64e-9, 1.0, 1e-3);
+  }
+  auto open = tris;
+  open.pop_back();
+  EXPECT_THROW(MeshShape(open, "open.stl"), std::invalid_argument);
+  EXPECT_THROW(MeshShape({}, "empty.stl"), std::invalid_argument);
+}
+
+TEST(AutoFill, SmoothnessOrdersCountsAndIsDeterministic) {
+  const EllipsoidShape e(kJ1);
+  AutoFillOptions fine, coarse;
+  fine.smoothness = 0;
+  coarse.smoothness = 2;
+  const auto a = auto_fill(e, fine), b = auto_fill(e, fine), c = auto_fill(e, coarse);
+  ASSERT_EQ(a.spheres.size(), b.spheres.size());
+  for (std::size_t i = 0; i < a.spheres.size(); ++i) {
+    EXPECT_EQ(a.spheres[i].centre_m, b.spheres[i].centre_m);
+    EXPECT_EQ(a.spheres[i].radius_m, b.spheres[i].radius_m);
+  }
+  // The smoothness scale was set so this shape gets about 1,800 and 180 spheres (docs/clumps.md).
+  EXPECT_GT(a.spheres.size(), 1200u);
+  EXPECT_LT(a.spheres.size(), 2500u);
+  EXPECT_GT(c.spheres.size(), 110u);
+  EXPECT_LT(c.spheres.size(), 260u);
+  const Overlap o = shape_overlap(e, a.spheres, 256);
+  EXPECT_GT(o.iou(), 0.96);  // measured 0.977
+  EXPECT_NEAR(o.clump_m3 / e.volume_m3(), 1.0, 0.05);
+}
+
+TEST(AutoFill, SphereCountTarget) {
+  const EllipsoidShape e(kJ1);
+  AutoFillOptions o;
+  o.target_spheres = 40;
+  o.voxels = 100;
+  const auto r = auto_fill(e, o);
+  EXPECT_NEAR(static_cast<double>(r.spheres.size()), 40.0, 4.0);  // the count moves in small steps
+  AutoFillOptions both;
+  both.target_spheres = 40;
+  both.smoothness = 1;
+  EXPECT_THROW(auto_fill(e, both), std::invalid_argument);
+}
+
+TEST(ManualFill, DeterministicOddCountsWithHighIoU) {
+  const EllipsoidShape e(kJ1);
+  ManualFillOptions o;
+  o.spheres = 7;
+  o.max_evaluations = 3000;
+  const auto a = manual_fill(e, o), b = manual_fill(e, o);
+  ASSERT_EQ(a.spheres.size(), 7u);
+  for (std::size_t i = 0; i < 7; ++i) {
+    EXPECT_EQ(a.spheres[i].centre_m, b.spheres[i].centre_m);
+    EXPECT_EQ(a.spheres[i].radius_m, b.spheres[i].radius_m);
+  }
+  EXPECT_GT(a.spheres[1].centre_m.x(), 0.0);  // the hilum sphere sits towards +x
+  const Overlap ov = shape_overlap(e, a.spheres, 256);
+  EXPECT_GT(ov.iou(), 0.9);  // the issue asks >= 0.8; 0.95 measured with the full budget
+  o.spheres = 8;
+  EXPECT_THROW(manual_fill(e, o), std::invalid_argument);
+  o.spheres = 17;
+  EXPECT_THROW(manual_fill(e, o), std::invalid_argument);
+}
+
+TEST(ClumpFile, RoundTripKeepsSpheresAndFrame) {
+  const EllipsoidShape e(kJ1);
+  ClumpShapeInfo info;
+  info.ellipsoid = kJ1;
+  AutoFillOptions o;
+  o.target_spheres = 12;
+  o.voxels = 80;
+  ClumpModel m = finish_clump(auto_fill(e, o).spheres, e, info, 1340.0);
+  m.name = "t";
+  m.method = "auto";
+  const std::string path = (std::filesystem::temp_directory_path() / "seedcal_clump_rt.toml").string();
+  write_clump_file(path, m);
+  const ClumpModel r = read_clump_file(path);
+  ASSERT_EQ(r.spheres.size(), m.spheres.size());
+  for (std::size_t i = 0; i < r.spheres.size(); ++i)
+    EXPECT_LT((r.spheres[i].centre_m - m.spheres[i].centre_m).norm(), 1e-12);
+  EXPECT_NEAR(r.volume_m3 / m.volume_m3, 1.0, 1e-9);
+  const auto back = r.spheres_in_shape_frame();
+  EXPECT_NEAR(shape_overlap(e, back, 128).iou(), shape_overlap(e, m.spheres_in_shape_frame(), 128).iou(), 1e-6);
+  // The body frame is the principal frame: the centroid of the body-frame spheres' union is 0.
+  EXPECT_LT(union_mass_properties(r.spheres).centroid_m.norm(), 1e-3 * 4e-3);
+  std::ofstream(path, std::ios::app) << "bogus_key = 1\n";
+  EXPECT_THROW(read_clump_file(path), InputError);
+}
+
+TEST(Variety, ReadsAllThreeWithTheirFlags) {
+  for (const char* n : {"jinong1", "jinong2", "jinong3"}) {
+    const Variety v = read_variety(n);
+    EXPECT_EQ(v.paper_clumps.size(), 6u) << n;
+    EXPECT_GT(v.width_mean_m, 0.0);
+    EXPECT_EQ(v.soak_hours.size(), 4u);
+    EXPECT_TRUE(v.flags.count("targets.bulk_density_flag")) << n;
+  }
+  EXPECT_FALSE(read_variety("jinong3").mc_flag.empty());
+  EXPECT_THROW(read_variety("no_such_variety"), InputError);
+}
+
+TEST(Moisture, FitsKeepEveryPointAndGrowthInterpolates) {
+  const Variety v = read_variety("jinong1");
+  const ModulusFit f = fit_modulus(v);
+  EXPECT_EQ(f.linear.n, 4);
+  EXPECT_LT(f.linear.c1, 0.0);  // the modulus falls with moisture (Table 3)
+  EXPECT_GT(f.log_linear.r2, 0.5);
+  // The log-linear model reproduces the points' geometric trend: within a factor 3 at each.
+  for (std::size_t i = 0; i < v.mc_moisture_fraction.size(); ++i) {
+    const double ratio = f.youngs_modulus_pa(v.mc_moisture_fraction[i]) / v.mc_youngs_modulus_pa[i];
+    EXPECT_GT(ratio, 1.0 / 3);
+    EXPECT_LT(ratio, 3.0);
+  }
+  EXPECT_EQ(fit_modulus(read_variety("jinong3")).linear.n, 4);  // flagged values are kept
+  EXPECT_EQ(soaking_growth(v, 0.0), Vec3::Ones());
+  const Vec3 g12 = v.soak_after_m[0].cwiseQuotient(v.soak_before_m[0]);
+  EXPECT_LT((soaking_growth(v, 12.0) - g12).norm(), 1e-12);
+  EXPECT_LT((soaking_growth(v, 6.0) - 0.5 * (g12 + Vec3::Ones())).norm(), 1e-12);
+}
+
+TEST(SizeDistribution, FromTable5Width) {
+  const Variety v = read_variety("jinong1");
+  const ScaleDistribution d = width_scale_distribution(v);
+  EXPECT_DOUBLE_EQ(d.mean, 1.0);
+  EXPECT_NEAR(d.sd, 1.1916 / 9.1098, 1e-12);
+  EXPECT_NEAR(d.lo, 1.0 - 2 * d.sd, 1e-12);
+  EXPECT_NEAR(d.hi, 1.0 + 2 * d.sd, 1e-12);
+}
+
+}  // namespace
+}  // namespace seedcal
