@@ -77,6 +77,7 @@ FactoryResult insert_particles(Simulation& sim, const FactorySpec& spec) {
                             : (spec.count > 0 ? 1000 * spec.count : std::uint64_t{1000000});
   const InsertionRegion& R = spec.region;
   std::vector<std::pair<Vec3, double>> world;
+  std::vector<int> prims;
   std::uint64_t attempts = 0;
   // The scale is drawn once per body and kept while positions are tried (up to
   // `tries_per_body`), so crowding does not bias the size distribution towards small bodies.
@@ -116,10 +117,13 @@ FactoryResult insert_particles(Simulation& sim, const FactorySpec& spec) {
       const Vec3 p = b.position_m + b.orientation * sd.offset_m;
       if (grid.overlaps(p, sd.radius_m)) { ok = false; break; }
       for (const Wall& w : sim.walls()) {
+        // Any primitive within a radius is an overlap (WallShape::near: before the shared-edge
+        // rule, so a contact the rule gives to a neighbour still counts); a mesh answers from
+        // its grid (candidates), not by testing every triangle.
         const Vec3 c = to_wall_frame(w.pose, p);
-        WallHit hit;
-        for (int k = 0; k < w.shape->primitive_count() && ok; ++k)
-          if (w.shape->nearest(k, c, sd.radius_m, hit) && hit.distance < sd.radius_m) ok = false;
+        w.shape->candidates(c, sd.radius_m, prims);
+        for (int k : prims)
+          if (w.shape->near(k, c, sd.radius_m)) { ok = false; break; }
         if (!ok) break;
       }
       if (!ok) break;

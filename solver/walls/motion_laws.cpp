@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace seedcal {
 
@@ -10,11 +11,14 @@ void ConstantVelocity::advance(Wall& w, double, double dt) {
   w.pose.origin_m += dt * v_;
 }
 
-Rotation::Rotation(const Vec3& axis, const Vec3& point_m, double rate_rad_s, const WallPose& start)
-    : axis_(axis.normalized()), point_(point_m), rate_(rate_rad_s), start_(start) {}
+Rotation::Rotation(const Vec3& axis, const Vec3& point_m, double rate_rad_s, const WallPose& start,
+                   double t_start_s)
+    : axis_(axis.normalized()), point_(point_m), rate_(rate_rad_s), start_(start), t_start_(t_start_s) {
+  if (!(axis.norm() > 0.0)) throw std::invalid_argument("Rotation: the axis must be non-zero");
+}
 
 void Rotation::advance(Wall& w, double t, double dt) {
-  const double angle = rate_ * (t + dt);
+  const double angle = rate_ * (t + dt - t_start_);
   const Quat r(Eigen::AngleAxisd(angle, axis_));
   w.pose.orientation = (r * start_.orientation).normalized();
   w.pose.origin_m = point_ + r * (start_.origin_m - point_);
@@ -40,15 +44,63 @@ double Schedule::max_speed_m_s(double) const {
   return v;
 }
 
-Servo::Servo(const Vec3& direction, double target_force_n, double max_speed_m_s, double alpha)
-    : dir_(direction.normalized()), target_(target_force_n), v_max_(max_speed_m_s), alpha_(alpha) {}
+PiecewiseLinearVelocity::PiecewiseLinearVelocity(std::vector<Knot> knots) : knots_(std::move(knots)) {
+  if (knots_.empty()) throw std::invalid_argument("PiecewiseLinearVelocity: needs at least one knot");
+  for (std::size_t k = 1; k < knots_.size(); ++k)
+    if (!(knots_[k].t_s > knots_[k - 1].t_s))
+      throw std::invalid_argument("PiecewiseLinearVelocity: knot times must increase");
+}
 
-void Servo::advance(Wall& w, double, double dt) {
-  const double error = target_ - measured_force_n(w);
-  double v = w.contact_stiffness_n_m > 0.0 ? alpha_ * error / (w.contact_stiffness_n_m * dt) : v_max_;
-  v = std::clamp(v, -v_max_, v_max_);
-  w.pose.velocity_m_s = v * dir_ + transverse_;
-  w.pose.origin_m += dt * w.pose.velocity_m_s;
+PiecewiseLinearVelocity PiecewiseLinearVelocity::move(double t0, const Vec3& direction, double speed,
+                                                      double distance, double ramp) {
+  if (!(speed > 0.0) || !(distance > 0.0) || ramp < 0.0)
+    throw std::invalid_argument("PiecewiseLinearVelocity::move: speed, distance must be > 0, ramp >= 0");
+  const Vec3 v = speed * direction.normalized();
+  // With ramps the distance covered is speed (T - ramp) for a plateau ending at T - ramp.
+  const double cruise = distance / speed - ramp;  // plateau duration
+  if (cruise < 0.0)
+    throw std::invalid_argument("PiecewiseLinearVelocity::move: the ramps alone cover more than the distance");
+  if (ramp == 0.0) {
+    // A jump: knots a hair apart would be ill-conditioned, so use a plateau with steep edges of
+    // 1e-9 of the duration (the distance error is zero: the edges are symmetric trapezoids).
+    const double e = 1e-9 * distance / speed;
+    return PiecewiseLinearVelocity({{t0, Vec3::Zero()}, {t0 + e, v}, {t0 + e + distance / speed - e, v},
+                                    {t0 + distance / speed + e, Vec3::Zero()}});
+  }
+  return PiecewiseLinearVelocity({{t0, Vec3::Zero()}, {t0 + ramp, v}, {t0 + ramp + cruise, v},
+                                  {t0 + 2.0 * ramp + cruise, Vec3::Zero()}});
+}
+
+Vec3 PiecewiseLinearVelocity::velocity_at(double t) const {
+  if (t < knots_.front().t_s || t > knots_.back().t_s) return Vec3::Zero();
+  for (std::size_t k = 1; k < knots_.size(); ++k)
+    if (t <= knots_[k].t_s) {
+      const double f = (t - knots_[k - 1].t_s) / (knots_[k].t_s - knots_[k - 1].t_s);
+      return (1.0 - f) * knots_[k - 1].velocity_m_s + f * knots_[k].velocity_m_s;
+    }
+  return knots_.back().velocity_m_s;
+}
+
+Vec3 PiecewiseLinearVelocity::displacement_until(double t) const {
+  Vec3 d = Vec3::Zero();
+  for (std::size_t k = 1; k < knots_.size(); ++k) {
+    const double a = knots_[k - 1].t_s, b = std::min(t, knots_[k].t_s);
+    if (b <= a) break;
+    // Trapezoid of the linear velocity on [a, b]: exact.
+    d += 0.5 * (b - a) * (knots_[k - 1].velocity_m_s + velocity_at(b));
+  }
+  return d;
+}
+
+void PiecewiseLinearVelocity::advance(Wall& w, double t, double dt) {
+  w.pose.origin_m += displacement_until(t + dt) - displacement_until(t);
+  w.pose.velocity_m_s = velocity_at(t + dt);
+}
+
+double PiecewiseLinearVelocity::max_speed_m_s(double) const {
+  double v = 0.0;
+  for (const Knot& k : knots_) v = std::max(v, k.velocity_m_s.norm());
+  return v;
 }
 
 }  // namespace seedcal

@@ -2,6 +2,7 @@
 // Prescribed wall motions (DESIGN.md: "prescribed motion is a law attached to a wall").
 #include <vector>
 
+#include "solver/walls/servo_wall.hpp"  // the servo law, kept beside these for existing users
 #include "solver/walls/wall.hpp"
 
 namespace seedcal {
@@ -17,11 +18,15 @@ class ConstantVelocity final : public WallMotion {
   Vec3 v_;
 };
 
-// Rotation about a fixed axis through `point` at `rate_rad_s` (the drum). The pose is computed
-// from the elapsed time, not accumulated, so it does not drift.
+// Rotation about a fixed axis through `point` at `rate_rad_s` (the drum), starting from the pose
+// `start` at time `t_start_s`. The pose is computed from the elapsed time, not accumulated: the
+// turn R(angle) = AngleAxis(rate (t - t_start), axis) is composed with the start orientation,
+// q = R q_start, and the origin turned about the point, o = point + R (o_start - point), so it
+// does not drift. Velocity of the wall's origin: w x (o - point).
 class Rotation final : public WallMotion {
  public:
-  Rotation(const Vec3& axis, const Vec3& point_m, double rate_rad_s, const WallPose& start);
+  Rotation(const Vec3& axis, const Vec3& point_m, double rate_rad_s, const WallPose& start,
+           double t_start_s = 0.0);
   void advance(Wall& w, double t, double dt) override;
   double max_speed_m_s(double extent_m) const override { return std::abs(rate_) * extent_m; }
   static double rpm_to_rad_s(double rpm) { return rpm * 2.0 * 3.14159265358979323846 / 60.0; }
@@ -30,6 +35,7 @@ class Rotation final : public WallMotion {
   Vec3 axis_, point_;
   double rate_;
   WallPose start_;
+  double t_start_;
 };
 
 // Piecewise-constant velocity: segment k moves at velocity[k] from t_start[k] to t_end[k]; at rest
@@ -49,34 +55,29 @@ class Schedule final : public WallMotion {
   std::vector<Segment> segments_;
 };
 
-// Servo: moves the wall along `direction` (unit, pointing into the particles) so that the normal
-// force the particles exert on it holds `target_force_n` (= target stress x area).
-//
-// Control law (the stress-controlled wall of PFC, Itasca; Cundall 1988): each step the wall moves
-//   v = G (F_target - F_measured),   G = alpha / (k_w dt),
-// where k_w is the summed normal contact stiffness of the wall's current contacts (reported by the
-// contact kernel): one step removes the fraction alpha of the force error if the contacts behaved
-// as springs. alpha = 0.1, not PFC's 0.5: a moving wall also loads its contacts' dashpots (c v), so
-// the measured force answers the wall's own speed; at 0.5 that feedback drove a bang-bang limit
-// cycle (+-6 N on 251 N, mean 1.3 % low) in solver/walls/walls_test.cpp, at 0.1 the lid holds
-// 200 kPa to 1e-6. The speed is capped at `max_speed_m_s` so the wall never outruns its contacts
-// (quasi-static loading), and with no contacts the wall approaches at the cap.
-class Servo final : public WallMotion {
+// Piecewise-linear velocity against time: knots (t_k, v_k), t_k increasing, the velocity linear
+// between neighbouring knots and zero before the first and after the last (so a profile that is
+// to stop ends with a zero knot). The displacement over a step is the exact integral (trapezoids
+// of the interpolated end values), so the pose after any number of steps is exact up to rounding.
+class PiecewiseLinearVelocity final : public WallMotion {
  public:
-  Servo(const Vec3& direction, double target_force_n, double max_speed_m_s, double alpha = 0.1);
+  struct Knot {
+    double t_s;
+    Vec3 velocity_m_s;
+  };
+  explicit PiecewiseLinearVelocity(std::vector<Knot> knots);
+  // Move `distance_m` along the unit `direction` at `speed_m_s`, starting at `t0_s`, with linear
+  // ramps of `ramp_s` up and down (0: a jump), e.g. lift a piling tube after the fill settled.
+  static PiecewiseLinearVelocity move(double t0_s, const Vec3& direction, double speed_m_s,
+                                      double distance_m, double ramp_s);
   void advance(Wall& w, double t, double dt) override;
-  double max_speed_m_s(double) const override { return v_max_; }
-  void set_target_force(double f) { target_ = f; }
-  // A velocity across the servo direction added to the servo motion (a shear-box lid that travels
-  // with the upper half).
-  void set_transverse_velocity(const Vec3& v) { transverse_ = v - v.dot(dir_) * dir_; }
-  double target_force_n() const { return target_; }
-  double measured_force_n(const Wall& w) const { return -w.force_n.dot(dir_); }
+  double max_speed_m_s(double) const override;
+  Vec3 velocity_at(double t_s) const;
+  // Displacement from t = -infinity to t_s.
+  Vec3 displacement_until(double t_s) const;
 
  private:
-  Vec3 dir_;
-  double target_, v_max_, alpha_;
-  Vec3 transverse_ = Vec3::Zero();
+  std::vector<Knot> knots_;
 };
 
 }  // namespace seedcal

@@ -21,6 +21,17 @@ struct WallHit {
   Vec3 point;       // nearest surface point
 };
 
+// Contacts at boundaries shared by primitives (box edges and corners, a cylinder's rims, a mesh's
+// edges and vertices) are counted once, by one rule applied inside each shape's nearest():
+//   a primitive's contact at a point p on its own boundary (an edge, a rim, a vertex; never a
+//   contact inside its face) is dropped when a primitive sharing that boundary is strictly nearer
+//   to the centre (the sphere then lies on the neighbour's side and touches the neighbour's face,
+//   of which p is part), or reaches the same point p with a lower index (the same contact).
+// A face contact is always kept: two faces of a valley or a box's inner corner touch a sphere at
+// two distinct points, which are two real contacts. Within `boundary_tolerance(reach)` points and
+// distances count as equal (they come from different formulas, so differ by rounding).
+inline double boundary_tolerance(double reach) { return 1e-9 * reach; }
+
 // Contact with a single surface point p (an edge, a rim, a corner): fills `hit` when the sphere
 // centre c is within `reach` of it.
 inline bool point_hit(const Vec3& c, const Vec3& p, double reach, WallHit& hit) {
@@ -39,6 +50,23 @@ class WallShape {
   virtual int primitive_count() const = 0;
   // Fills `hit` and returns true when the sphere centre is within `reach` of the primitive.
   virtual bool nearest(int primitive, const Vec3& centre, double reach, WallHit& hit) const = 0;
+  // True when the primitive's surface comes within `reach` of `centre`, before the shared-boundary
+  // rule above: the contact list keeps such a primitive as a candidate even when the rule drops
+  // its contact now, since the sphere may move (within the skin) to where that primitive owns it.
+  virtual bool near(int primitive, const Vec3& centre, double reach) const {
+    WallHit hit;
+    return nearest(primitive, centre, reach, hit);
+  }
+  // Replaces `out` with the primitives that may lie within `reach` of `centre` (wall frame), in
+  // increasing order; a superset is allowed, a primitive left out is never tested. Default: all
+  // of them (a few faces); a mesh answers from its spatial grid, so the contact list and the
+  // particle factory cost O(nearby triangles), not O(triangles), per sphere.
+  virtual void candidates(const Vec3& centre, double reach, std::vector<int>& out) const {
+    (void)centre;
+    (void)reach;
+    out.resize(static_cast<std::size_t>(primitive_count()));
+    for (int p = 0; p < primitive_count(); ++p) out[static_cast<std::size_t>(p)] = p;
+  }
   virtual const char* type_name() const = 0;
   // Radius of a ball about the wall origin holding the whole shape (infinite for a plane); with
   // the rotation angle it bounds how far a surface point moves when the wall turns.

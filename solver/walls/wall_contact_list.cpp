@@ -13,6 +13,7 @@ void WallContactList::build(const SphereState& spheres, const std::vector<Wall>&
   // Spheres are ordered by body; within a body, order candidates by (wall, sphere, primitive).
   struct Cand { std::uint16_t w; std::uint32_t s, p; };
   std::vector<Cand> cand;
+  std::vector<int> prims;
   std::size_t s = 0;
   while (s < n) {
     const std::uint32_t b = spheres.body[s];
@@ -24,9 +25,12 @@ void WallContactList::build(const SphereState& spheres, const std::vector<Wall>&
       for (std::size_t k = s; k < e; ++k) {
         const Vec3 c = to_wall_frame(wl.pose, spheres.position_m[k]);
         const double reach = spheres.radius_m[k] + skin_m;
-        WallHit hit;
-        for (int p = 0; p < wl.shape->primitive_count(); ++p)
-          if (wl.shape->nearest(p, c, reach, hit))
+        // Only the primitives the shape reports near (a mesh: from its grid), and each kept by the
+        // test before the shared-boundary rule (WallShape::near), so a contact that the rule
+        // assigns to another primitive now is still found if the sphere moves to where it owns it.
+        wl.shape->candidates(c, reach, prims);
+        for (int p : prims)
+          if (wl.shape->near(p, c, reach))
             cand.push_back({static_cast<std::uint16_t>(w), static_cast<std::uint32_t>(k),
                             static_cast<std::uint32_t>(p)});
       }
