@@ -66,14 +66,17 @@ TEST(WallForces, SphereOnAMeshedFloorOverASharedVertexCountsOnce) {
   EXPECT_NEAR(sim.bodies().position_m[0].x(), 0.0, 1e-9);  // no sideways push from a seam
 }
 
-TEST(WallForces, DISABLED_SphereInATurningDrumIsCarriedUpAndBrakesTheDrum) {
+TEST(WallForces, SphereInATurningDrumIsCarriedUpAndBrakesTheDrum) {
   // Drum: R = 50 mm, 20 mm deep, axis along world y, turning at +1 rad/s about +y. A 5 mm sphere
-  // with rolling friction mu_r = 0.2 (EPSD, whose rolling torque the wall feels too) rolls on the
-  // wall. At steady rolling the friction force F_t = m g sin(theta) and the rolling torque
-  // mu_r F_n r balance about the sphere's centre (F_t r = mu_r F_n r, F_n = m g cos(theta)), so
-  // tan(theta) = mu_r: carried up by atan(0.2) = 11.3 degrees on the side the bottom moves to
-  // (w x (0,0,-R) = -x). The drum feels the moment of the weight about its axis, x_c m g, < 0:
-  // against its rotation (the motor's load).
+  // with rolling friction mu_r = 0.2 (EPSD, whose rolling torque the wall feels too) is carried up
+  // on the side the bottom moves to (w x (0,0,-R) = -x), held by its rolling spring, until the
+  // spring yields; then it rolls back and oscillates about the angle where rolling resistance
+  // balances its weight: F_t = m g sin(theta) and the rolling torque mu_r F_n r balance about its
+  // centre (F_t r = mu_r F_n r, F_n = m g cos(theta)), so tan(theta) = mu_r, 11.31 degrees. The
+  // oscillation is slowly damped (period ~0.5 s, turning points 7.0 and 15.7 degrees), so the
+  // test takes the midpoint of its extremes over two periods. The drum feels, on average over
+  // whole periods, the moment of the weight about its axis, x_c m g < 0: against its rotation
+  // (the motor's load).
   testing::MaterialSpec m;
   m.density_kg_m3 = 1340.0;
   m.youngs_modulus_pa = 1e8;
@@ -96,30 +99,37 @@ TEST(WallForces, DISABLED_SphereInATurningDrumIsCarriedUpAndBrakesTheDrum) {
   drum.pose.origin_m = Vec3(0, -0.5 * D, 0);
   drum.motion = std::make_shared<Rotation>(Vec3::UnitY(), Vec3::Zero(), omega, drum.pose);
   sim.add_wall(drum);
-  ASSERT_TRUE(run_for(sim, 0.6)) << sim.failure().message;
-  double sum_angle = 0.0, sum_torque = 0.0, sum_expected = 0.0;
-  int n = 0;
-  const std::size_t builds = sim.neighbour_builds();
-  const double mg = b.mass_kg * 9.81;
-  for (int s = 0; s < 50000; ++s, ++n) {
-    ASSERT_TRUE(sim.step());
+  auto angle = [&] {
     const Vec3 c = sim.bodies().position_m[0];
-    sum_angle += std::atan2(-c.x(), -c.z());
+    return std::atan2(-c.x(), -c.z());
+  };
+  // Carried up with the wall at first: after 0.2 s (0.2 rad of drum turn) it is still held.
+  ASSERT_TRUE(run_for(sim, 0.2)) << sim.failure().message;
+  EXPECT_GT(angle(), 0.8 * 0.2 * R / (R - r));  // the centre's arc: R / (R - r) x the drum's
+  ASSERT_TRUE(run_for(sim, 0.3)) << sim.failure().message;
+  double lo = 1e9, hi = -1e9, sum_torque = 0.0, sum_expected = 0.0;
+  const double mg = b.mass_kg * 9.81;
+  const int n = 1000000;  // 2 s, about four periods
+  for (int s = 0; s < n; ++s) {
+    ASSERT_TRUE(sim.step());
+    lo = std::min(lo, angle());
+    hi = std::max(hi, angle());
     sum_torque += sim.walls()[0].torque_n_m.y();
-    sum_expected += c.x() * mg;
+    sum_expected += sim.bodies().position_m[0].x() * mg;
   }
-  const double theta = sum_angle / n, torque = sum_torque / n, expected = sum_expected / n;
-  std::printf("drum: carried up %.3f deg (atan(mu_r) = %.3f), drum torque %.4e N m (x_c m g = %.4e)\n",
-              theta * 180.0 / std::numbers::pi, std::atan(0.2) * 180.0 / std::numbers::pi, torque, expected);
-  EXPECT_GT(theta, 0.0);
-  // 3 %: the steady angle is shifted by the centripetal term (omega^2 R / g = 0.5 %) and by the
-  // sphere's contact lever (r minus the overlap) differing from r in the two torques (< 1 %).
+  const double theta = 0.5 * (lo + hi), torque = sum_torque / n, expected = sum_expected / n;
+  const double deg = 180.0 / std::numbers::pi;
+  std::printf("drum: oscillates %.3f..%.3f deg, midpoint %.3f deg (atan(mu_r) = %.3f); mean drum "
+              "torque %.5e N m (mean x_c m g = %.5e, ratio %.4f)\n",
+              lo * deg, hi * deg, theta * deg, std::atan(0.2) * deg, torque, expected, torque / expected);
+  // 3 %: the centripetal term shifts the balance by omega^2 R / g = 0.5 %, the lever (r less the
+  // overlap) differs between the two torques by < 0.1 %, and the oscillation about the balance is
+  // not exactly symmetric (its midpoint drifts by ~0.05 degrees between periods).
   EXPECT_NEAR(std::tan(theta) / 0.2, 1.0, 0.03);
   EXPECT_LT(torque, 0.0);  // against the rotation (+y)
-  // 2 %: the sphere's residual oscillation about its steady angle, averaged over 0.1 s.
-  EXPECT_NEAR(torque / expected, 1.0, 0.02);
-  // The drum turns about its symmetry axis: no list rebuild is forced by the wall.
-  EXPECT_LE(sim.neighbour_builds() - builds, 2u);
+  // 1 %: over a window that is not a whole number of periods the sphere's angular momentum about
+  // the axis changes by at most ~1.3e-7 kg m2/s, 0.1 % of the mean moment over 2 s.
+  EXPECT_NEAR(torque / expected, 1.0, 0.01);
 }
 
 }  // namespace
