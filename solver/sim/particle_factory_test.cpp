@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "solver/sim/particle_factory.hpp"
@@ -52,6 +53,7 @@ TEST(ParticleFactory, PlacesNonOverlappingBodiesDeterministically) {
   mean /= static_cast<double>(a.size());
   for (double r : a) var += (r / 0.002 - mean) * (r / 0.002 - mean);
   const double sd = std::sqrt(var / static_cast<double>(a.size() - 1));
+  std::printf("factory: 500 scales, mean %.4f (expected 1), sd %.4f (expected 0.0880)\n", mean, sd);
   // Truncation at +-2 sd leaves the mean at 1 and shrinks the sd to 0.880 of 0.1 (truncated
   // normal: sd^2 (1 - 2 b phi(b) / (2 Phi(b) - 1)), b = 2). Mean: 5 standard errors
   // (0.088 / sqrt(500)); sd: its standard error is ~ sd / sqrt(2 n) = 0.0028, 0.015 is 5 of them.
