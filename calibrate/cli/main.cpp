@@ -5,6 +5,7 @@
 #include "calibrate/cli/commands.hpp"
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/cli/version.hpp"
+#include "calibrate/study/mpi_executor.hpp"
 
 namespace seedcal {
 
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   add_study_command(app, g);
   add_bench_command(app, g);
   try {
+    MpiSession mpi(&argc, &argv);  // only when started by mpirun
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);

@@ -1,0 +1,117 @@
+// Stage 5: confirmation with fresh DEM replicates (seeds never used before) at the chosen point.
+// Per target: mean, sample sd, relative error e = mean / T - 1 and its two-sided confidence
+// interval e +- t_{(1+c)/2, n-1} sd / (sqrt(n) |T|) (Student t, GSL). The study has converged
+// when |e| <= tolerance for every target; the interval is reported with it, and whether it lies
+// inside +-tolerance too ("resolved": the replicates are enough to tell). Not converged: the
+// replicates join the surrogate data, `batch` infill points are chosen on the primary target's
+// Gaussian process by the target-matching expected improvement (doe/surrogate/acquisition.hpp),
+// run once each, the surrogates are refitted and solved again, and the new point is confirmed;
+// until the budget of DEM runs (every replicate counts) or the round limit is reached.
+#include <cmath>
+
+#include <gsl/gsl_cdf.h>
+
+#include "calibrate/study/pipeline.hpp"
+#include "doe/surrogate/acquisition.hpp"
+#include "doe/surrogate/gaussian_process.hpp"
+
+namespace seedcal {
+namespace {
+
+nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round) {
+  const StudyConfig& s = ev.study();
+  const auto records = ev.run(ev.plan("confirm", st.chosen, s.confirm.replicates));
+  nlohmann::json out = {{"round", round}, {"targets", nlohmann::json::object()}};
+  bool all_ok = true;
+  for (std::size_t t = 0; t < s.targets.size(); ++t) {
+    std::vector<double> v;
+    std::vector<std::uint64_t> seeds;
+    for (const auto& r : records)
+      if (record_target(r) == static_cast<int>(t) && std::isfinite(record_metric(s, r))) {
+        v.push_back(record_metric(s, r));
+        seeds.push_back(r.seed);
+      }
+    const double T = s.targets[t].value;
+    nlohmann::json c = {{"samples", v}, {"seeds", seeds}, {"n", v.size()}, {"target", T}};
+    if (v.size() < 2) {
+      c["note"] = "fewer than two replicates finished: nothing is confirmed";
+      all_ok = false;
+      out["targets"][s.targets[t].metric] = c;
+      continue;
+    }
+    double mean = 0.0, var = 0.0;
+    for (double x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    for (double x : v) var += (x - mean) * (x - mean);
+    const double sd = std::sqrt(var / static_cast<double>(v.size() - 1));
+    const double e = mean / T - 1.0;
+    const double q = gsl_cdf_tdist_Pinv(0.5 * (1.0 + s.confirm.confidence), static_cast<double>(v.size() - 1));
+    const double half = q * sd / (std::sqrt(static_cast<double>(v.size())) * std::fabs(T));
+    c["mean"] = mean;
+    c["sd"] = sd;
+    c["rel_error"] = e;
+    c["rel_error_ci"] = {e - half, e + half};
+    c["confidence"] = s.confirm.confidence;
+    c["within_tolerance"] = std::fabs(e) <= s.confirm.tolerance;
+    c["resolved"] = std::fabs(e) + half <= s.confirm.tolerance;
+    all_ok = all_ok && std::fabs(e) <= s.confirm.tolerance;
+    out["targets"][s.targets[t].metric] = c;
+  }
+  out["converged"] = all_ok;
+  nlohmann::json at = nlohmann::json::object();
+  for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
+  out["point"] = at;
+  st.confirmed = out["targets"];
+  st.converged = all_ok;
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store) {
+  const StudyConfig& s = ev.study();
+  const int nt = static_cast<int>(s.targets.size());
+  nlohmann::json report = {{"tolerance", s.confirm.tolerance}, {"replicates", s.confirm.replicates},
+                           {"budget", s.confirm.max_evaluations}, {"rounds", nlohmann::json::array()}};
+  for (int round = 1;; ++round) {
+    report["rounds"].push_back(confirm_at(ev, st, round));
+    st.rounds = round;
+    store.set_stage("confirm", report);
+    if (st.converged) { report["stop_reason"] = "converged"; break; }
+    const int next_cost = (s.confirm.batch + s.confirm.replicates) * nt;
+    if (round >= s.confirm.max_rounds) { report["stop_reason"] = "round limit"; break; }
+    if (ev.runs_used() + next_cost > s.confirm.max_evaluations) { report["stop_reason"] = "budget of DEM runs"; break; }
+    // Infill on the primary target's Gaussian process, conditioned on everything so far.
+    if (s.confirm.batch > 0) {
+      const int primary = primary_target(s);
+      Eigen::MatrixXd U;
+      Eigen::VectorXd y;
+      gather_surrogate_data(ev, st, primary, &U, &y);
+      doe::GpOptions go;
+      go.seed = s.seed + static_cast<std::uint64_t>(round);
+      const auto gp = doe::GaussianProcess::fit(U, y, go);
+      doe::AcquisitionOptions ao;
+      ao.rule = doe::AcquisitionRule::target;
+      ao.target = s.targets[static_cast<std::size_t>(primary)].value;
+      ao.lower = Eigen::VectorXd::Constant(U.cols(), -1.0);
+      ao.upper = Eigen::VectorXd::Constant(U.cols(), 1.0);
+      ao.seed = s.seed + static_cast<std::uint64_t>(round);
+      const Eigen::MatrixXd batch = doe::select_batch(gp, ao, s.confirm.batch);
+      std::vector<EvalRequest> requests;
+      nlohmann::json pts = nlohmann::json::array();
+      for (Eigen::Index i = 0; i < batch.rows(); ++i) {
+        const Eigen::VectorXd x = box_point(st, batch.row(i).transpose());
+        pts.push_back(std::vector<double>(x.data(), x.data() + x.size()));
+        const auto r = ev.plan("infill", full_point(st, x), 1);
+        requests.insert(requests.end(), r.begin(), r.end());
+      }
+      ev.run(requests);
+      report["rounds"].back()["infill_points"] = pts;
+    }
+    fit_and_solve(ev, st, store, "solve_round_" + std::to_string(round + 1));
+  }
+  store.set_stage("confirm", report);
+  return report;
+}
+
+}  // namespace seedcal

@@ -1,0 +1,97 @@
+#include "calibrate/study/evaluation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <limits>
+
+#include "calibrate/cli/commands.hpp"
+#include "calibrate/config/overrides.hpp"
+#include "calibrate/config/toml_reader.hpp"
+#include "calibrate/scenes/scene_registry.hpp"
+#include "solver/core/errors.hpp"
+
+namespace seedcal {
+namespace {
+
+std::string number_text(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  std::string s = buf;
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // a TOML float, not an integer
+  return s;
+}
+
+}  // namespace
+
+nlohmann::json EvalRequest::to_json() const {
+  return {{"stage", stage}, {"target", target}, {"inputs", inputs}, {"seed", seed}};
+}
+
+EvalRequest EvalRequest::from_json(const nlohmann::json& j) {
+  EvalRequest r;
+  r.stage = j.at("stage").get<std::string>();
+  r.target = j.at("target").get<int>();
+  r.inputs = j.at("inputs");
+  r.seed = j.at("seed").get<std::uint64_t>();
+  return r;
+}
+
+EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,
+                          const std::string& config_hash) {
+  EvaluationRecord rec;
+  rec.stage = request.stage;
+  rec.inputs = request.inputs;
+  rec.seed = request.seed;
+  rec.config_hash = config_hash;
+  rec.seedcal_version = version_string();
+  const StudyTarget& target = study.targets.at(static_cast<std::size_t>(request.target));
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  try {
+    toml::value doc = TomlReader::parse_file(target.scene);
+    std::vector<std::string> sets = target.sets;
+    for (const auto& [path, value] : request.inputs.items()) sets.push_back(path + "=" + number_text(value.get<double>()));
+    apply_overrides(doc, sets);
+    const std::string kind = doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
+    const auto& reg = scene_registry();
+    const auto it = reg.find(kind);
+    if (it == reg.end()) throw InputError(target.scene + ": kind = \"" + kind + "\": unknown scene kind");
+    SceneContext ctx{target.scene, "", threads, request.seed};
+    rec.metrics = run_repeated(it->second, doc, target.scene, ctx, 1);
+    rec.status = rec.metrics.value("status", "ok");
+    if (rec.status != "ok" && rec.metrics.contains("failure"))
+      rec.message = rec.metrics["failure"].value("message", "");
+    if (rec.status == "ok") {
+      const auto m = rec.metrics.find(target.metric);
+      if (m == rec.metrics.end() || !m->is_number() || !std::isfinite(m->get<double>())) {
+        rec.status = "failed";
+        rec.message = target.scene + ": the scene's metrics have no finite \"" + target.metric + "\"";
+      }
+    }
+  } catch (const SettingError& e) {
+    rec.status = "failed";
+    rec.message = target.scene + ": " + e.what();
+  } catch (const std::exception& e) {
+    rec.status = "failed";
+    rec.message = e.what();
+  }
+  if (rec.metrics.contains("runs")) rec.metrics.erase("runs");  // one run: the same numbers again
+  rec.metrics["study_target"] = request.target;
+  rec.metrics["study_target_name"] = target.name;
+  rec.cpu_seconds = rec.metrics.value("cpu_seconds", static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC);
+  rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return rec;
+}
+
+double record_metric(const StudyConfig& study, const EvaluationRecord& r) {
+  const int t = record_target(r);
+  if (r.status != "ok" || t < 0 || t >= static_cast<int>(study.targets.size()))
+    return std::numeric_limits<double>::quiet_NaN();
+  const auto m = r.metrics.find(study.targets[static_cast<std::size_t>(t)].metric);
+  return m != r.metrics.end() && m->is_number() ? m->get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+int record_target(const EvaluationRecord& r) { return r.metrics.value("study_target", -1); }
+
+}  // namespace seedcal

@@ -1,0 +1,36 @@
+#pragma once
+// One DEM evaluation of a study: a target's scene run once at given parameter values with a given
+// seed. Requests are planned deterministically (their seeds come from a counter in plan order), so
+// a resumed study asks for exactly the same requests and finds the finished ones in the store.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "calibrate/store/study_store.hpp"
+#include "calibrate/study/study_config.hpp"
+
+namespace seedcal {
+
+struct EvalRequest {
+  std::string stage;              // screen, ascent, surrogate, confirm, infill
+  int target = 0;                 // index into StudyConfig::targets
+  nlohmann::json inputs;          // parameter path -> natural value (every study parameter)
+  std::uint64_t seed = 0;         // unique within the study
+
+  nlohmann::json to_json() const;
+  static EvalRequest from_json(const nlohmann::json& j);
+};
+
+// Runs the request in this process with `threads` OpenMP threads; never throws for a failed or
+// unstable simulation or a scene error: the record says "failed" and why.
+EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,
+                          const std::string& config_hash);
+
+// The value of the target's metric in a record (NaN when the run failed or lacks it).
+double record_metric(const StudyConfig& study, const EvaluationRecord& r);
+// The target index a record belongs to (from its metrics), -1 when unknown.
+int record_target(const EvaluationRecord& r);
+
+}  // namespace seedcal

@@ -1,0 +1,41 @@
+#pragma once
+// Where a batch of DEM evaluations runs. The planner hands a batch to an executor and gets each
+// record back as soon as its simulation ends (in the planner's thread, so the store is appended
+// to in one place).
+//   WorkerPool: `--jobs J` worker processes on this machine (`seedcal calibrate-worker`), each
+//   running one simulation at a time with `--threads T`; a simulation that crashes its worker is
+//   recorded as failed with the signal, and the worker is restarted.
+//   MpiExecutor (calibrate/study/mpi_executor.hpp): ranks 1..N-1 of an MPI job.
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "calibrate/study/evaluation.hpp"
+
+namespace seedcal {
+
+using RecordCallback = std::function<void(std::size_t index, EvaluationRecord record)>;
+
+class Executor {
+ public:
+  virtual ~Executor() = default;
+  virtual int slots() const = 0;  // simulations that run at once
+  virtual std::string describe() const = 0;
+  virtual void run(const std::vector<EvalRequest>& requests, const RecordCallback& done) = 0;
+};
+
+struct WorkerCommand {
+  std::string executable;          // this program (/proc/self/exe)
+  std::vector<std::string> args;   // calibrate-worker STUDY [--set ...] --threads T
+};
+
+std::unique_ptr<Executor> make_worker_pool(WorkerCommand command, int jobs,
+                                           const std::string& config_hash);
+
+// The worker side: reads one request (JSON) per line from `in_fd`, writes one record (JSON) per
+// line to `out_fd`, until end of input.
+int run_worker_loop(const StudyConfig& study, int threads, const std::string& config_hash, int in_fd, int out_fd);
+
+}  // namespace seedcal

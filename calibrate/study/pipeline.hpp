@@ -1,0 +1,57 @@
+#pragma once
+// The calibration pipeline (DESIGN.md, "Calibration pipeline"; docs/calibrate.md): screen ->
+// steepest ascent -> surrogate -> solve -> confirm (with infill). Each stage reads what the ones
+// before it decided from PipelineState, plans its DEM runs through the StudyEvaluator (which
+// answers finished runs from the store), and records its design and fits in the store.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "calibrate/study/study_evaluator.hpp"
+
+namespace seedcal {
+
+struct PipelineState {
+  std::vector<int> kept;            // study parameter indices the later stages vary
+  Eigen::VectorXd nominal;          // natural values of every parameter (held when not kept)
+  Eigen::VectorXd first_order;      // screening: coded first-order coefficients of the kept factors
+  double screen_mean = 0.0;         // screening: mean response of the primary target
+  // The surrogate box in natural units, one row per kept factor.
+  Eigen::VectorXd box_lo, box_hi;
+  std::string surrogate_kind;       // per primary target: "quadratic" or "gp"
+  Eigen::VectorXd chosen;           // natural, every parameter
+  nlohmann::json solution;          // the solve stage's report
+  nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
+  bool converged = false;
+  int rounds = 0;
+};
+
+// Index of the target that drives the one-target stages (ascent): the largest weight, first wins.
+int primary_target(const StudyConfig& s);
+
+// Natural value of every parameter from the kept factors' values (others at nominal).
+Eigen::VectorXd full_point(const PipelineState& st, const Eigen::VectorXd& kept_values);
+
+// Mean response per target at each requested point: runs is requests in plan order (targets
+// inside replicates, as StudyEvaluator::plan makes them); NaN where every replicate failed.
+Eigen::MatrixXd mean_responses(const StudyConfig& s, const std::vector<EvaluationRecord>& records, int points,
+                               int replicates);
+
+nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+nlohmann::json run_surrogate_design(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// Every finished run of `target` on the kept subspace (held parameters at nominal) inside the
+// surrogate box, in box-coded units (-1 .. 1 per kept factor).
+void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, int target, Eigen::MatrixXd* U,
+                           Eigen::VectorXd* y);
+// Natural values of the kept factors at box-coded u.
+Eigen::VectorXd box_point(const PipelineState& st, const Eigen::VectorXd& u);
+// Fits the surrogates to every record on the kept subspace and solves for the target(s).
+nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& label);
+// Confirms at st.chosen; while not converged and the budget allows, adds infill points and
+// re-solves.
+nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+
+}  // namespace seedcal

@@ -1,0 +1,150 @@
+#include "calibrate/study/run_study.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <unistd.h>
+
+#include "calibrate/cli/commands.hpp"
+#include "calibrate/cli/errors.hpp"
+#include "calibrate/io/atomic_file.hpp"
+#include "calibrate/study/pipeline.hpp"
+
+namespace seedcal {
+namespace {
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std::string& hash) {
+  const std::string path = o.out_dir + "/study.h5";
+  if (std::filesystem::exists(path)) {
+    if (!o.resume)
+      throw InputError(path + ": a study is already stored here; continue it with --resume, or choose another --out");
+    StudyStore store = StudyStore::open(path);
+    if (store.header().config_hash != hash)
+      throw InputError(path + ": this study directory was made from a different study (fingerprint " +
+                       store.header().config_hash + ", now " + hash + "): the study file " + o.study_file +
+                       ", its overrides or a scene or clump file it names changed since. Resume with the "
+                       "unchanged files, or start the changed study in another --out directory");
+    return store;
+  }
+  StudyHeader h{hash, s.text, version_string(), utc_now()};
+  return StudyStore::create(path, h);
+}
+
+nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const StudyEvaluator& ev,
+                          const StudyStore& store, const std::string& stage_reached, const std::string& hash) {
+  nlohmann::json j;
+  j["study"] = s.name;
+  j["stage_reached"] = stage_reached;
+  nlohmann::json calibrated = nlohmann::json::object(), held = nlohmann::json::object();
+  if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
+    for (std::size_t p = 0; p < s.parameters.size(); ++p) {
+      const bool kept = std::find(st.kept.begin(), st.kept.end(), static_cast<int>(p)) != st.kept.end();
+      (kept ? calibrated : held)[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
+    }
+  }
+  j["calibrated"] = calibrated;
+  j["held_at_nominal"] = held;
+  nlohmann::json targets = nlohmann::json::object();
+  for (const auto& t : s.targets) targets[t.metric] = t.value;
+  j["targets"] = targets;
+  j["confirmed"] = st.confirmed.is_null() ? nlohmann::json::object() : st.confirmed;
+  j["converged"] = st.converged;
+  j["confirmation_rounds"] = st.rounds;
+  j["evaluations"] = ev.runs_used();
+  j["evaluations_from_store"] = ev.runs_reused();
+  j["classical_workflow_evaluations"] =
+      3 * (s.screen.runs + 5 + 13) + 3;  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations
+  j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
+  j["tolerance"] = s.confirm.tolerance;
+  double cpu = 0.0;
+  for (const auto& r : ev.history()) cpu += r.cpu_seconds;
+  j["cpu_seconds"] = cpu;
+  double wall = 0.0;
+  if (store.stages().contains("sessions"))
+    for (const auto& x : store.stages()["sessions"]) wall += x.value("wall_seconds", 0.0);
+  j["wall_seconds"] = wall;
+  j["provenance"] = {{"seedcal_version", version_string()}, {"study_file", s.file}, {"seed", s.seed},
+                     {"config_hash", hash}, {"config", s.text}};
+  return j;
+}
+
+}  // namespace
+
+WorkerCommand worker_command(const StudyRunOptions& o) {
+  WorkerCommand c;
+  c.executable = std::filesystem::read_symlink("/proc/self/exe").string();
+  c.args = {"calibrate-worker", o.study_file, "--threads", std::to_string(o.threads)};
+  for (const auto& s : o.sets) {
+    c.args.push_back("--set");
+    c.args.push_back(s);
+  }
+  return c;
+}
+
+nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
+  const StudyConfig s = read_study(o.study_file, o.sets);
+  const std::string hash = study_fingerprint(s);
+  std::unique_ptr<Executor> own;
+  if (!executor) {
+    own = make_worker_pool(worker_command(o), o.jobs, hash);
+    executor = own.get();
+  }
+  std::filesystem::create_directories(o.out_dir);
+  StudyStore store = open_store(o, s, hash);
+  Progress progress(o.out_dir + "/calibrate.log", o.progress_on_terminal && ::isatty(STDERR_FILENO), executor->slots());
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json sessions = store.stages().value("sessions", nlohmann::json::array());
+  const std::size_t session = sessions.size();
+  sessions.push_back({{"started_utc", utc_now()}, {"wall_seconds", 0.0}, {"executor", executor->describe()},
+                      {"threads_per_simulation", o.threads}, {"seedcal_version", version_string()}});
+  store.set_stage("sessions", sessions);
+  progress.log("study " + s.name + " (" + s.file + "), fingerprint " + hash + ", " + executor->describe() +
+               (store.evaluations().empty() ? "" : ", resuming with " + std::to_string(store.evaluations().size()) + " stored runs"));
+
+  StudyEvaluator ev(s, store, *executor, progress);
+  PipelineState st;
+  auto checkpoint = [&](const std::string& stage) {
+    sessions[session]["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    store.set_stage("sessions", sessions);
+    const nlohmann::json j = summary_of(s, st, ev, store, stage, hash);
+    write_json_atomic(o.out_dir + "/summary.json", j);
+    return j;
+  };
+  const int plan_screen = s.screen.runs * s.screen.replicates * static_cast<int>(s.targets.size());
+  progress.stage("screen", plan_screen);
+  const auto screen = run_screening(ev, st, store);
+  std::string kept;
+  for (const auto& k : screen["kept"]) kept += (kept.empty() ? "" : ", ") + k.get<std::string>();
+  progress.log("screen: kept " + kept);
+  checkpoint("screen");
+
+  progress.stage("ascent", s.ascent.max_steps * s.screen.replicates * static_cast<int>(s.targets.size()));
+  const auto ascent = run_ascent(ev, st, store);
+  progress.log("ascent: " + ascent.value("stop_reason", ascent.value("skipped", std::string())));
+  checkpoint("ascent");
+
+  const int k = static_cast<int>(st.kept.size());
+  const int design_runs = (k == 1 ? 4 : k == 2 ? 8 : 2 * k * (k - 1)) + s.surrogate.center_points;
+  progress.stage("surrogate", design_runs * s.surrogate.replicates * static_cast<int>(s.targets.size()));
+  run_surrogate_design(ev, st, store);
+  const auto solved = fit_and_solve(ev, st, store, "solve_round_1");
+  progress.log("surrogate: " + st.surrogate_kind + ", chosen " + solved["solution"]["chosen"].dump());
+  checkpoint("solve");
+
+  progress.stage("confirm", s.confirm.replicates * static_cast<int>(s.targets.size()));
+  const auto confirm = run_confirmation(ev, st, store);
+  progress.log("confirm: " + confirm.value("stop_reason", std::string()) + ", " + std::to_string(ev.runs_used()) +
+               " DEM runs");
+  return checkpoint("done");
+}
+
+}  // namespace seedcal

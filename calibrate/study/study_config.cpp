@@ -1,0 +1,146 @@
+#include "calibrate/study/study_config.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "calibrate/cli/errors.hpp"
+#include "calibrate/clumps/clump_source.hpp"
+#include "calibrate/config/overrides.hpp"
+#include "calibrate/config/toml_reader.hpp"
+#include "calibrate/store/study_store.hpp"
+
+namespace seedcal {
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void read_target(TomlReader& t, StudyConfig& s) {
+  StudyTarget tg;
+  const std::string scene = t.string("scene");
+  tg.metric = t.string("metric");
+  tg.name = t.string("name", tg.metric);
+  tg.value = t.number("value", Range::open(-1e300, 1e300));
+  if (t.has("value") && tg.value == 0.0) t.error("value", "= 0: a target must be non-zero (errors are relative)");
+  tg.weight = t.number("weight", Range::positive(), 1.0);
+  if (t.has("set")) tg.sets = t.strings("set", 0, 64);
+  if (!scene.empty()) {
+    tg.scene = resolve_data_path(scene, s.file);
+    if (!std::filesystem::exists(tg.scene)) t.error("scene", "= \"" + scene + "\": no such file");
+  }
+  t.check_unknown_keys();
+  s.targets.push_back(std::move(tg));
+}
+
+void read_parameter(TomlReader& t, StudyConfig& s) {
+  StudyParameter p;
+  p.path = t.string("path");
+  p.low = t.number("low", Range());
+  p.high = t.number("high", Range());
+  if (p.high <= p.low) t.error("high", "must be greater than low (" + std::to_string(p.low) + ")");
+  p.min = t.number("min", Range(), p.low);
+  p.max = t.number("max", Range(), p.high);
+  if (p.min > p.low) t.error("min", "must be at most low (" + std::to_string(p.low) + ")");
+  if (p.max < p.high) t.error("max", "must be at least high (" + std::to_string(p.high) + ")");
+  p.nominal = t.number("nominal", Range::closed(p.min, p.max), 0.5 * (p.low + p.high));
+  p.prior = t.number("prior", Range::closed(p.min, p.max), p.nominal);
+  p.calibrate = t.boolean("calibrate", false);
+  t.check_unknown_keys();
+  for (const auto& q : s.parameters)
+    if (q.path == p.path) t.error("path", "= \"" + p.path + "\" is listed twice");
+  s.parameters.push_back(std::move(p));
+}
+
+}  // namespace
+
+int StudyConfig::index_of(const std::string& path) const {
+  for (std::size_t i = 0; i < parameters.size(); ++i)
+    if (parameters[i].path == path) return static_cast<int>(i);
+  return -1;
+}
+
+StudyConfig read_study(const std::string& path, const std::vector<std::string>& sets) {
+  StudyConfig s;
+  s.file = path;
+  s.dir = std::filesystem::path(path).parent_path().string();
+  s.doc = TomlReader::parse_file(path);
+  apply_overrides(s.doc, sets);
+  s.text = toml::format(s.doc);
+  auto diag = std::make_shared<ConfigDiagnostics>();
+  diag->file = path;
+  TomlReader root(s.doc, "", diag);
+  s.name = root.string("name", std::filesystem::path(path).stem().string());
+  s.seed = static_cast<std::uint64_t>(root.integer("seed", 0, (std::int64_t{1} << 40), 1));
+  auto targets = root.table_array("target");
+  if (targets.empty()) root.error("target", "is required: at least one [[target]] (scene, metric, value)");
+  for (auto& t : targets) read_target(t, s);
+  auto params = root.table_array("parameter");
+  if (params.empty()) root.error("parameter", "is required: at least one [[parameter]] (path, low, high)");
+  for (auto& p : params) read_parameter(p, s);
+  bool any_calibrated = false;
+  for (const auto& p : s.parameters) any_calibrated = any_calibrated || p.calibrate;
+  if (!params.empty() && !any_calibrated)
+    root.error("parameter", "no parameter has calibrate = true: name what the study solves for");
+  if (s.parameters.size() > 23) root.error("parameter", "at most 23 parameters can be screened");
+
+  if (auto t = root.table("screen")) {
+    s.screen.runs = static_cast<int>(t->integer("runs", 8, 24, s.screen.runs));
+    static const std::set<int> kRuns = {8, 12, 16, 20, 24};
+    if (!kRuns.count(s.screen.runs)) t->error("runs", "must be one of 8, 12, 16, 20, 24 (Plackett-Burman sizes)");
+    if (static_cast<int>(s.parameters.size()) > s.screen.runs - 1)
+      t->error("runs", "must exceed the number of parameters (" + std::to_string(s.parameters.size()) + ")");
+    s.screen.replicates = static_cast<int>(t->integer("replicates", 1, 10, s.screen.replicates));
+    s.screen.alpha = t->number("alpha", Range::open(0.0, 0.5), s.screen.alpha);
+    t->check_unknown_keys();
+  }
+  if (auto t = root.table("ascent")) {
+    s.ascent.step = t->number("step", Range::left_open(0.0, 2.0), s.ascent.step);
+    s.ascent.max_steps = static_cast<int>(t->integer("max_steps", 0, 50, s.ascent.max_steps));
+    s.ascent.box_half_width = t->number("box_half_width", Range::left_open(0.0, 1.0), s.ascent.box_half_width);
+    t->check_unknown_keys();
+  }
+  if (auto t = root.table("surrogate")) {
+    s.surrogate.design = t->choice("design", {"auto", "ccd", "box_behnken"}, s.surrogate.design);
+    s.surrogate.model = t->choice("model", {"auto", "quadratic", "gp"}, s.surrogate.model);
+    s.surrogate.center_points = static_cast<int>(t->integer("center_points", 1, 10, s.surrogate.center_points));
+    s.surrogate.replicates = static_cast<int>(t->integer("replicates", 1, 10, s.surrogate.replicates));
+    t->check_unknown_keys();
+  }
+  if (auto t = root.table("confirm")) {
+    s.confirm.replicates = static_cast<int>(t->integer("replicates", 2, 50, s.confirm.replicates));
+    s.confirm.tolerance = t->number("tolerance", Range::open(0.0, 1.0), s.confirm.tolerance);
+    s.confirm.confidence = t->number("confidence", Range::open(0.5, 1.0), s.confirm.confidence);
+    s.confirm.batch = static_cast<int>(t->integer("batch", 0, 32, s.confirm.batch));
+    s.confirm.max_evaluations = static_cast<int>(t->integer("max_evaluations", 1, 100000, s.confirm.max_evaluations));
+    s.confirm.max_rounds = static_cast<int>(t->integer("max_rounds", 1, 100, s.confirm.max_rounds));
+    t->check_unknown_keys();
+  }
+  root.check_unknown_keys();
+  diag->throw_if_any();
+  return s;
+}
+
+std::string study_fingerprint(const StudyConfig& s) {
+  std::string all = s.text;
+  for (const auto& t : s.targets) {
+    all += "\n--- " + t.scene + "\n" + read_text(t.scene);
+    try {  // the clump file the scene names, when it names one
+      const toml::value scene = TomlReader::parse_file(t.scene);
+      if (scene.contains("particle") && scene.at("particle").contains("clump_file")) {
+        const std::string clump = resolve_data_path(scene.at("particle").at("clump_file").as_string().str, t.scene);
+        all += "\n--- " + clump + "\n" + read_text(clump);
+      }
+    } catch (const std::exception&) {
+      // an unreadable scene is reported when it runs
+    }
+  }
+  return fnv1a_hex(all);
+}
+
+}  // namespace seedcal

@@ -1,0 +1,84 @@
+#pragma once
+// A calibration study (DESIGN.md, "Calibration pipeline"): the targets (a scene, the metric it
+// measures and the measured value), the candidate DEM parameters with their screening ranges, and
+// the settings of each stage. Read from a TOML study file; every problem names the file, the line,
+// the key, the value and the allowed range (docs/calibrate.md lists the keys).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <toml.hpp>
+
+namespace seedcal {
+
+struct StudyTarget {
+  std::string name;              // short label ("shear"); default: the metric
+  std::string scene;             // scene file, resolved against the study file's folder
+  std::vector<std::string> sets; // overrides applied to the scene before the parameters
+  std::string metric;            // key of the scene's metrics.json (e.g. shear_strength_pa)
+  double value = 0.0;            // the measured value the study fits
+  double weight = 1.0;           // joint mode: weight of this target's squared relative error
+};
+
+struct StudyParameter {
+  std::string path;              // the --set path (seed_seed.static_friction)
+  double low = 0.0, high = 1.0;  // screening range (coded -1 / +1)
+  double min = 0.0, max = 0.0;   // hard limits the ascent and the surrogate stay inside
+  double nominal = 0.0;          // value used while the parameter is not varied
+  double prior = 0.0;            // the choice rule prefers solutions close to this
+  bool calibrate = false;        // always kept after screening (the study solves for it)
+};
+
+struct ScreenSettings {
+  int runs = 12;                 // Plackett-Burman runs: 8, 12, 16, 20 or 24
+  int replicates = 1;
+  double alpha = 0.10;           // significance level of the effects' t test
+};
+
+struct AscentSettings {
+  double step = 0.5;             // coded step of the base factor along the path
+  int max_steps = 6;
+  double box_half_width = 0.5;   // coded half-width of the surrogate box around the crossing
+};
+
+struct SurrogateSettings {
+  std::string design = "auto";   // auto (CCD for 2 kept factors, Box-Behnken for 3+), ccd, box_behnken
+  std::string model = "auto";    // auto (cross-validated choice), quadratic, gp
+  int center_points = 2;
+  int replicates = 1;
+};
+
+struct ConfirmSettings {
+  int replicates = 3;            // fresh DEM runs (unused seeds) per confirmation
+  double tolerance = 0.02;       // relative error accepted
+  double confidence = 0.95;      // of the stated bound on the relative error
+  int batch = 2;                 // acquisition-chosen points added per infill round
+  int max_evaluations = 46;      // DEM runs of the whole study (every replicate counts)
+  int max_rounds = 6;
+};
+
+struct StudyConfig {
+  std::string file;              // as given
+  std::string dir;               // its folder (relative paths resolve here)
+  std::string name;
+  std::uint64_t seed = 1;
+  std::vector<StudyTarget> targets;
+  std::vector<StudyParameter> parameters;
+  ScreenSettings screen;
+  AscentSettings ascent;
+  SurrogateSettings surrogate;
+  ConfirmSettings confirm;
+  std::string text;              // the study file after overrides (recorded in the store)
+  toml::value doc;
+
+  int index_of(const std::string& path) const;  // -1 when not a parameter
+};
+
+// Reads and validates a study file (throws InputError with every problem found).
+StudyConfig read_study(const std::string& path, const std::vector<std::string>& sets = {});
+
+// Fingerprint of everything that decides the study's results: the study text and the text of
+// every scene file it names (a changed scene refuses --resume as a changed study does).
+std::string study_fingerprint(const StudyConfig& s);
+
+}  // namespace seedcal

@@ -1,0 +1,47 @@
+#pragma once
+// The planner's one door to DEM runs: gives each planned request its seed (a counter in plan
+// order, so every seed is used once and a resumed study plans the same seeds), answers requests
+// already in the store from the store, runs the others on the executor, and appends each record
+// to the store the moment it arrives.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "calibrate/store/study_store.hpp"
+#include "calibrate/study/executor.hpp"
+#include "calibrate/study/progress.hpp"
+#include "calibrate/study/study_config.hpp"
+
+namespace seedcal {
+
+class StudyEvaluator {
+ public:
+  StudyEvaluator(const StudyConfig& study, StudyStore& store, Executor& executor, Progress& progress);
+
+  // A request for every target at `natural` (one value per study parameter).
+  std::vector<EvalRequest> plan(const std::string& stage, const Eigen::VectorXd& natural, int replicates);
+  // Runs the requests (store first), returns the records in request order.
+  std::vector<EvaluationRecord> run(const std::vector<EvalRequest>& requests);
+
+  int runs_used() const { return used_; }        // DEM runs of this plan so far (replicates included)
+  int runs_reused() const { return reused_; }    // of those, answered from the store
+  // Every record of this plan so far, in plan order.
+  const std::vector<EvaluationRecord>& history() const { return history_; }
+  const StudyConfig& study() const { return study_; }
+  Eigen::VectorXd inputs_vector(const EvaluationRecord& r) const;  // natural, study order
+
+ private:
+  const StudyConfig& study_;
+  StudyStore& store_;
+  Executor& executor_;
+  Progress& progress_;
+  std::uint64_t counter_ = 0;
+  std::map<std::uint64_t, std::size_t> stored_;  // seed -> index in the store
+  std::vector<EvaluationRecord> history_;
+  int used_ = 0, reused_ = 0;
+};
+
+}  // namespace seedcal
