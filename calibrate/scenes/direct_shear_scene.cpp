@@ -1,4 +1,5 @@
 // `kind = "direct_shear"`: schema in docs/scenes/direct_shear.md.
+#include <numbers>
 #include <sstream>
 
 #include "calibrate/io/atomic_file.hpp"
@@ -18,6 +19,7 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
     spec.normal_stress_pa = rig->number("normal_stress_pa", Range::closed(1.0, 1e8), spec.normal_stress_pa);
     spec.shear_speed_m_s = rig->number("shear_speed_m_s", Range::closed(1e-6, 1.0), spec.shear_speed_m_s);
     spec.shear_displacement_m = rig->number("shear_displacement_m", Range::closed(1e-4, 1.0), spec.shear_displacement_m);
+    spec.sample_density_kg_m3 = rig->number("sample_density_kg_m3", Range::closed(0.0, 1e4), spec.sample_density_kg_m3);
     spec.pour_height_factor = rig->number("pour_height_factor", Range::closed(0.5, 20.0), spec.pour_height_factor);
     spec.consolidation_max_time_s = rig->number("consolidation_max_time_s", Range::left_open(0.0, 100.0), spec.consolidation_max_time_s);
     spec.lid_max_speed_m_s = rig->number("lid_max_speed_m_s", Range::left_open(0.0, 10.0), spec.lid_max_speed_m_s);
@@ -39,6 +41,8 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   j["inertial_number"] = r.inertial_number;
   j["dilation_m"] = r.dilation_m;
   j["seeds"] = r.seeds;
+  j["sample_mass_kg"] = r.sample_mass_kg;
+  j["sample_bulk_density_kg_m3"] = r.sample_mass_kg / (std::numbers::pi * 0.25 * spec.diameter_m * spec.diameter_m * spec.sample_height_m);
   add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
     std::ostringstream csv;

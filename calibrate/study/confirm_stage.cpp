@@ -8,6 +8,7 @@
 // run once each, the surrogates are refitted and solved again, and the new point is confirmed;
 // until the budget of DEM runs (every replicate counts) or the round limit is reached.
 #include <cmath>
+#include <cstdio>
 
 #include <gsl/gsl_cdf.h>
 
@@ -20,6 +21,7 @@ namespace {
 
 nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round) {
   const StudyConfig& s = ev.study();
+  ev.announce("confirm round " + std::to_string(round), s.confirm.replicates * static_cast<int>(s.targets.size()));
   const auto records = ev.run(ev.plan("confirm", st.chosen, s.confirm.replicates));
   nlohmann::json out = {{"round", round}, {"targets", nlohmann::json::object()}};
   bool all_ok = true;
@@ -47,6 +49,11 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round) {
     const double e = mean / T - 1.0;
     const double q = gsl_cdf_tdist_Pinv(0.5 * (1.0 + s.confirm.confidence), static_cast<double>(v.size() - 1));
     const double half = q * sd / (std::sqrt(static_cast<double>(v.size())) * std::fabs(T));
+    // Replicates that would put the whole interval inside +-tolerance if the mean sat on the
+    // target: n >= (t sd / (tol |T|))^2 (t from this round's degrees of freedom: an estimate).
+    const double need = std::pow(q * sd / (s.confirm.tolerance * std::fabs(T)), 2.0);
+    c["replicates_to_resolve_tolerance"] = static_cast<long>(std::ceil(std::max(need, 2.0)));
+    c["cv"] = sd / std::fabs(mean);
     c["mean"] = mean;
     c["sd"] = sd;
     c["rel_error"] = e;
@@ -75,6 +82,20 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
                            {"budget", s.confirm.max_evaluations}, {"rounds", nlohmann::json::array()}};
   for (int round = 1;; ++round) {
     report["rounds"].push_back(confirm_at(ev, st, round));
+    {
+      const auto& last = report["rounds"].back();
+      std::string line = "confirm round " + std::to_string(round) + ":";
+      for (const auto& [metric, c] : last["targets"].items()) {
+        if (!c.contains("rel_error")) continue;
+        char buf[256];
+        std::snprintf(buf, sizeof buf, " %s mean %.6g (target %.6g), error %+.2f %% (%g %% interval %+.2f .. %+.2f %%)",
+                      metric.c_str(), c["mean"].get<double>(), c["target"].get<double>(),
+                      100.0 * c["rel_error"].get<double>(), 100.0 * s.confirm.confidence,
+                      100.0 * c["rel_error_ci"][0].get<double>(), 100.0 * c["rel_error_ci"][1].get<double>());
+        line += buf;
+      }
+      ev.note(line);
+    }
     st.rounds = round;
     store.set_stage("confirm", report);
     if (st.converged) { report["stop_reason"] = "converged"; break; }
@@ -96,6 +117,7 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
       ao.lower = Eigen::VectorXd::Constant(U.cols(), -1.0);
       ao.upper = Eigen::VectorXd::Constant(U.cols(), 1.0);
       ao.seed = s.seed + static_cast<std::uint64_t>(round);
+      ev.announce("infill round " + std::to_string(round), s.confirm.batch * nt);
       const Eigen::MatrixXd batch = doe::select_batch(gp, ao, s.confirm.batch);
       std::vector<EvalRequest> requests;
       nlohmann::json pts = nlohmann::json::array();

@@ -140,7 +140,6 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   progress.log("surrogate: " + st.surrogate_kind + ", chosen " + solved["solution"]["chosen"].dump());
   checkpoint("solve");
 
-  progress.stage("confirm", s.confirm.replicates * static_cast<int>(s.targets.size()));
   const auto confirm = run_confirmation(ev, st, store);
   progress.log("confirm: " + confirm.value("stop_reason", std::string()) + ", " + std::to_string(ev.runs_used()) +
                " DEM runs");

@@ -26,6 +26,10 @@ class StudyEvaluator {
   // Runs the requests (store first), returns the records in request order.
   std::vector<EvaluationRecord> run(const std::vector<EvalRequest>& requests);
 
+  // Tells the progress display a new stage (or round) begins with `planned` runs.
+  void announce(const std::string& stage, int planned) { progress_.stage(stage, planned); }
+  void note(const std::string& message) { progress_.log(message); }
+
   int runs_used() const { return used_; }        // DEM runs of this plan so far (replicates included)
   int runs_reused() const { return reused_; }    // of those, answered from the store
   // Every record of this plan so far, in plan order.

@@ -1,11 +1,13 @@
 // Local worker processes for `seedcal calibrate --jobs J` (see executor.hpp). A process per slot,
 // not a thread: each simulation's CPU time is its own process's, and a simulation that crashes
-// (a signal) takes down only its worker, never the study.
+// (a signal) takes down only its worker, never the study. Pipe ends are close-on-exec, so a worker
+// never holds another worker's pipe open (each sees end of input when the study closes its pipe).
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <fcntl.h>
 #include <poll.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -143,7 +145,7 @@ class WorkerPool final : public Executor {
 
   void start(Worker& w) {
     int in[2], out[2];
-    if (::pipe(in) != 0 || ::pipe(out) != 0) throw RunFailed(std::string("cannot create a pipe: ") + std::strerror(errno));
+    if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0) throw RunFailed(std::string("cannot create a pipe: ") + std::strerror(errno));
     std::vector<std::string> argv_s = {command_.executable};
     argv_s.insert(argv_s.end(), command_.args.begin(), command_.args.end());
     std::vector<char*> argv;

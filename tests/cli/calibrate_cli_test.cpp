@@ -1,0 +1,151 @@
+// `seedcal calibrate` end to end on the impact scene (milliseconds a run, noise-free): a study must
+// recover parameters whose responses it was given, alone (one target, the Hertz contact time) and
+// jointly (contact time and peak force, two unknowns); bad study files exit 2 naming the key;
+// a finished study resumes entirely from its store; a changed study is refused.
+#include <cmath>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/cli.hpp"
+
+namespace seedcal::testing {
+namespace {
+
+const char* kScene = "/data/scenes/examples/impact.toml";
+const char* kSceneSets = R"(set = ["duration_s=1.0e-4", "dt_s=2.0e-8"])";
+
+// The scene's response at (E, rho), measured by `seedcal run`.
+nlohmann::json impact_metrics(double youngs, double density, const std::string& dir) {
+  char sets[256];
+  std::snprintf(sets, sizeof sets,
+                "--set duration_s=1.0e-4 --set dt_s=2.0e-8 --set materials.glass.youngs_modulus_pa=%.17g "
+                "--set materials.glass.density_kg_m3=%.17g",
+                youngs, density);
+  const auto r = run_cli("run " + source_dir() + kScene + " " + sets + " --out " + dir + " --threads 1");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return nlohmann::json::parse(read_text(dir + "/metrics.json"));
+}
+
+std::string study_text(const std::string& targets, double tolerance) {
+  return "name = \"impact-test\"\nseed = 3\n" + targets + R"(
+[[parameter]]
+path = "materials.glass.youngs_modulus_pa"
+low = 2.0e10
+high = 6.0e10
+calibrate = true
+)" + std::string(tolerance > 0.004 ? R"(
+[[parameter]]
+path = "materials.glass.density_kg_m3"
+low = 2000.0
+high = 3200.0
+calibrate = true
+)" : R"(
+[[parameter]]
+path = "glass_glass.restitution"
+low = 0.6
+high = 0.95
+nominal = 0.9
+)") + R"(
+[screen]
+runs = 8
+
+[confirm]
+replicates = 2
+tolerance = )" + std::to_string(tolerance) + "\nmax_evaluations = 60\n";
+}
+
+std::string target(const std::string& metric, double value) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "[[target]]\nscene = \"%s%s\"\n%s\nmetric = \"%s\"\nvalue = %.17g\n\n",
+                source_dir().c_str(), kScene, kSceneSets, metric.c_str(), value);
+  return buf;
+}
+
+TEST(CalibrateCli, RecoversYoungsModulusFromContactTime) {
+  const std::string dir = scratch_dir("calibrate-one");
+  const double e0 = 3.3e10;
+  const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
+  write_text(dir + "/study.toml", study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
+  const double e = s["calibrated"]["materials.glass.youngs_modulus_pa"].get<double>();
+  // t_c ~ E^(-2/5) (Hertz): a 0.3 % time tolerance allows about 0.75 % in E, plus the dt grain.
+  EXPECT_NEAR(e / e0, 1.0, 0.012) << s.dump(1);
+  EXPECT_LE(std::fabs(s["confirmed"]["contact_duration_s"]["rel_error"].get<double>()), 0.003);
+  EXPECT_LE(s["evaluations"].get<int>(), 60);
+  for (const char* key : {"calibrated", "targets", "confirmed", "evaluations", "converged", "solution_set",
+                          "cpu_seconds", "wall_seconds"})
+    EXPECT_TRUE(s.contains(key)) << key;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/study.h5"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/calibrate.log"));
+
+  // The same directory again: refused without --resume; with it, every run comes from the store.
+  const auto again = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out");
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_NE(again.output.find("--resume"), std::string::npos) << again.output;
+  const auto resumed = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --threads 1");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const auto s2 = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_EQ(s2["evaluations_from_store"], s2["evaluations"]);
+  EXPECT_EQ(s2["calibrated"], s["calibrated"]);
+  // A changed study (another seed) does not match the stored one.
+  const auto changed = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --set seed=4");
+  EXPECT_EQ(changed.exit_code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("different study"), std::string::npos) << changed.output;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CalibrateCli, JointTargetsIdentifyTwoUnknowns) {
+  const std::string dir = scratch_dir("calibrate-joint");
+  const double e0 = 4.1e10, rho0 = 2350.0;
+  const auto m = impact_metrics(e0, rho0, dir + "/truth");
+  write_text(dir + "/study.toml",
+             study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+                            target("max_normal_force_n", m["max_normal_force_n"].get<double>()),
+                        0.005));
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
+  EXPECT_FALSE(s["solution_set"]["underdetermined"].get<bool>());
+  EXPECT_NEAR(s["calibrated"]["materials.glass.youngs_modulus_pa"].get<double>() / e0, 1.0, 0.05) << s.dump(1);
+  EXPECT_NEAR(s["calibrated"]["materials.glass.density_kg_m3"].get<double>() / rho0, 1.0, 0.05) << s.dump(1);
+  for (const char* metric : {"contact_duration_s", "max_normal_force_n"})
+    EXPECT_LE(std::fabs(s["confirmed"][metric]["rel_error"].get<double>()), 0.005) << metric;
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
+  const std::string dir = scratch_dir("calibrate-bad");
+  struct Case {
+    std::string text, expect;
+  };
+  const std::string t = target("contact_duration_s", 4.7e-5);
+  const std::vector<Case> cases = {
+      {t + "[[parameter]]\npath = \"a.b\"\nlow = 2.0\nhigh = 1.0\ncalibrate = true\n", "parameter[0].high"},
+      {t + "[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\n", "calibrate = true"},
+      {t + "[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\ncalibrate = true\n[confirm]\ntolerence = 0.1\n",
+       "tolerance"},
+      {t + "[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\ncalibrate = true\n[screen]\nruns = 9\n", "screen.runs"},
+      {"[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\ncalibrate = true\n", "target"},
+      {"[[target]]\nscene = \"nowhere.toml\"\nmetric = \"m\"\nvalue = 1.0\n[[parameter]]\npath = \"a.b\"\nlow = 1.0\n"
+       "high = 2.0\ncalibrate = true\n", "nowhere.toml"},
+  };
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string file = dir + "/bad" + std::to_string(i) + ".toml";
+    write_text(file, cases[i].text);
+    const auto r = run_cli("calibrate " + file + " --out " + dir + "/out" + std::to_string(i));
+    EXPECT_EQ(r.exit_code, 2) << cases[i].text << r.output;
+    EXPECT_NE(r.output.find(file), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(cases[i].expect), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/out" + std::to_string(i) + "/study.h5"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace seedcal::testing
