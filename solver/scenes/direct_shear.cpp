@@ -1,5 +1,6 @@
 #include "solver/scenes/direct_shear.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -50,8 +51,30 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   sc.max_time_s = 1.0;
   sc.check_interval_s = 0.005;
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
-  // Level the sample: remove seeds whose centre lies above the sample height.
-  sim.remove_bodies([&](std::uint32_t b) { return sim.bodies().position_m[b].z() > H; });
+  if (spec.sample_density_kg_m3 > 0.0) {
+    // Weigh in the specimen: keep the lowest seeds up to the specimen mass (the last one kept when
+    // that brings the mass closer to it), remove the rest.
+    const double target = spec.sample_density_kg_m3 * area * H;
+    std::vector<std::uint32_t> order(sim.bodies().size());
+    for (std::uint32_t b = 0; b < order.size(); ++b) order[b] = b;
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return sim.bodies().position_m[a].z() < sim.bodies().position_m[b].z();
+    });
+    std::vector<char> keep(order.size(), 0);
+    double mass = 0.0;
+    for (std::uint32_t b : order) {
+      const double m = sim.bodies().mass_kg[b];
+      if (mass + m > target && (mass + m) - target > target - mass) break;
+      keep[b] = 1;
+      mass += m;
+    }
+    res.sample_mass_kg = mass;
+    sim.remove_bodies([&](std::uint32_t b) { return keep[b] == 0; });
+  } else {
+    // Level the sample: remove seeds whose centre lies above the sample height.
+    sim.remove_bodies([&](std::uint32_t b) { return sim.bodies().position_m[b].z() > H; });
+    for (std::size_t b = 0; b < sim.bodies().size(); ++b) res.sample_mass_kg += sim.bodies().mass_kg[b];
+  }
   res.seeds = sim.bodies().size();
 
   // Consolidate under a servo lid.

@@ -27,6 +27,10 @@ struct DirectShearSpec {
   double shear_speed_m_s = 0.01;
   double shear_displacement_m = 0.006;
   double pour_height_factor = 3.0;   // guide height above the sample, in sample heights
+  // > 0: the specimen is made to this bulk density (mass = density x pi D^2/4 x H, the lowest seeds
+  // kept), as a lab specimen is weighed in (ASTM D3080 sec. 8); 0: seeds whose centre lies above
+  // the sample height are removed.
+  double sample_density_kg_m3 = 0.0;
   double consolidation_max_time_s = 0.3;
   double lid_max_speed_m_s = 0.1;
   double record_interval_s = 2e-4;
@@ -49,6 +53,7 @@ struct DirectShearResult {
   double inertial_number = 0.0;
   double dilation_m = 0.0;             // lid rise from the start of shear to the end
   std::size_t seeds = 0;
+  double sample_mass_kg = 0.0;
   std::vector<ShearSample> curve;
   std::vector<std::vector<std::pair<Vec3, double>>> spheres;  // final state, for the picture
 };
