@@ -65,6 +65,34 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
       3 * (s.screen.runs + 5 + 13) + 3;  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations
   j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
   j["tolerance"] = s.confirm.tolerance;
+  // A digest of the stages (the full designs and fits are in study.h5, /stages).
+  const auto& stages = store.stages();
+  nlohmann::json digest = nlohmann::json::object();
+  if (stages.contains("screen")) {
+    nlohmann::json sc = {{"kept", stages["screen"]["kept"]}, {"effects", nlohmann::json::object()}};
+    for (const auto& t : stages["screen"]["targets"]) sc["effects"][t.value("name", "")] = t.value("effects", nlohmann::json::array());
+    digest["screen"] = sc;
+  }
+  if (stages.contains("ascent"))
+    digest["ascent"] = {{"result", stages["ascent"].value("stop_reason", stages["ascent"].value("skipped", std::string()))},
+                        {"points", stages["ascent"]["points"].size()},
+                        {"surrogate_box", stages["ascent"]["surrogate_box"]}};
+  for (int round = 100; round >= 1; --round) {
+    const std::string key = "solve_round_" + std::to_string(round);
+    if (!stages.contains(key)) continue;
+    nlohmann::json fits = nlohmann::json::object();
+    for (const auto& t : stages[key]["targets"]) {
+      nlohmann::json f = {{"chosen", t.value("chosen", std::string())}, {"points", t.value("points", 0)}};
+      if (t.contains("quadratic") && t["quadratic"].contains("loo_rmse")) f["quadratic_loo_rmse"] = t["quadratic"]["loo_rmse"];
+      if (t.contains("gp") && t["gp"].contains("loo_rmse")) f["gp_loo_rmse"] = t["gp"]["loo_rmse"];
+      if (t.contains("gp") && t["gp"].contains("noise_sd")) f["gp_noise_sd"] = t["gp"]["noise_sd"];
+      fits[t.value("name", "")] = f;
+    }
+    digest["surrogate"] = {{"round", round}, {"fits", fits}};
+    break;
+  }
+  if (stages.contains("confirm")) digest["confirm_stop_reason"] = stages["confirm"].value("stop_reason", std::string("running"));
+  j["stages"] = digest;
   double cpu = 0.0;
   for (const auto& r : ev.history()) cpu += r.cpu_seconds;
   j["cpu_seconds"] = cpu;

@@ -121,6 +121,20 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
     s.confirm.max_rounds = static_cast<int>(t->integer("max_rounds", 1, 100, s.confirm.max_rounds));
     t->check_unknown_keys();
   }
+  // The budget must at least pay for screening, the smallest surrogate design (the calibrated
+  // parameters only) and one confirmation.
+  if (!s.targets.empty() && any_calibrated) {
+    int k = 0;
+    for (const auto& p : s.parameters) k += p.calibrate ? 1 : 0;
+    const int design = (k == 1 ? 4 : k == 2 ? 8 : 2 * k * (k - 1)) + s.surrogate.center_points;
+    const int nt = static_cast<int>(s.targets.size());
+    const int minimum = nt * (s.screen.runs * s.screen.replicates + design * s.surrogate.replicates + s.confirm.replicates);
+    if (s.confirm.max_evaluations < minimum) {
+      root.error("confirm.max_evaluations", "= " + std::to_string(s.confirm.max_evaluations) + ": too small for this study: "
+                    "screening, the smallest surrogate design and one confirmation take " + std::to_string(minimum) +
+                    " DEM runs (raise it, or use fewer runs or replicates)");
+    }
+  }
   root.check_unknown_keys();
   diag->throw_if_any();
   return s;

@@ -198,7 +198,11 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         ++WC[ww[a]];
         WT[ww[a]] -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
-          T[b] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, hit.distance, spin_dir[b]);
+          // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
+          // plate feels it as a torque about its origin).
+          const Vec3 tau = cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, hit.distance, spin_dir[b]);
+          T[b] += tau;
+          WT[ww[a]] -= tau;
         } else if constexpr (RM == RollingModel::epsd) {
           const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
           const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s, pc.rolling_friction,

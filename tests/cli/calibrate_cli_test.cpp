@@ -132,6 +132,8 @@ TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
        "tolerance"},
       {t + "[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\ncalibrate = true\n[screen]\nruns = 9\n", "screen.runs"},
       {"[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\ncalibrate = true\n", "target"},
+      {t + "[[parameter]]\npath = \"a.b\"\nlow = 1.0\nhigh = 2.0\ncalibrate = true\n[confirm]\nmax_evaluations = 10\n",
+       "confirm.max_evaluations = 10: too small"},
       {"[[target]]\nscene = \"nowhere.toml\"\nmetric = \"m\"\nvalue = 1.0\n[[parameter]]\npath = \"a.b\"\nlow = 1.0\n"
        "high = 2.0\ncalibrate = true\n", "nowhere.toml"},
   };
