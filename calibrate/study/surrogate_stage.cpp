@@ -5,7 +5,8 @@
 // eq. 5.12), and the parameters where the chosen surface meets the target(s) found with NLopt.
 //   One target, several unknowns: the solutions form a curve (a surface, ...); every multi-start hit
 //   is reported, for two unknowns the curve is traced (for each value of the first factor, every
-//   root in the second), and the point closest to the prior (in box-coded units) is chosen.
+//   root in the second), and the point closest to the prior (in box-coded units) is chosen; in
+//   later rounds the one closest to the point confirmed last.
 //   Several targets: minimise sum_t w_t (y_t(x) / T_t - 1)^2 (plus 1e-9 times the squared coded
 //   distance to the prior, which only breaks ties).
 #include <cmath>
@@ -208,9 +209,16 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
   }
   st.surrogate_kind = fits[static_cast<std::size_t>(primary_target(s))].kind;
 
+  // The anchor of the choice rule: the prior in the first round; afterwards the point confirmed
+  // last, so a refitted surrogate moves the answer by the smallest step that corrects the
+  // confirmed error instead of jumping along the solution set.
+  const bool refine = st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size());
   Eigen::VectorXd prior_u(k);
-  for (int q = 0; q < k; ++q)
-    prior_u(q) = std::clamp((s.parameters[static_cast<std::size_t>(st.kept[static_cast<std::size_t>(q)])].prior - mid(q)) / half(q), -1.0, 1.0);
+  for (int q = 0; q < k; ++q) {
+    const int j = st.kept[static_cast<std::size_t>(q)];
+    const double anchor = refine ? st.chosen(j) : s.parameters[static_cast<std::size_t>(j)].prior;
+    prior_u(q) = std::clamp((anchor - mid(q)) / half(q), -1.0, 1.0);
+  }
   const doe::Surface distance = [prior_u](const Eigen::VectorXd& u) { return (u - prior_u).squaredNorm(); };
   doe::SurfaceOptimizeOptions search;
   search.lower = Eigen::VectorXd::Constant(k, -1.0);
@@ -234,7 +242,8 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
     chosen_u = sol.chosen;
     solution["found"] = sol.found;
     solution["underdetermined"] = k > 1;
-    solution["rule"] = "of the points where the surrogate meets the target, the one closest to the prior (box-coded distance)";
+    solution["rule"] = refine ? "of the points where the surrogate meets the target, the one closest to the point confirmed last (box-coded distance)"
+                              : "of the points where the surrogate meets the target, the one closest to the prior (box-coded distance)";
     solution["multistart_solutions"] = nlohmann::json::array();
     for (const auto& u : sol.solution_set) solution["multistart_solutions"].push_back(to_natural(u));
     if (k == 2) solution["curve"] = trace_curve(fits[0].surface, o.target, st, s);
