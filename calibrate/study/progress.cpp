@@ -6,7 +6,6 @@
 #include <iostream>
 
 namespace seedcal {
-namespace {
 
 std::string utc_now() {
   const std::time_t t = std::time(nullptr);
@@ -16,6 +15,8 @@ std::string utc_now() {
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
 }
+
+namespace {
 
 std::string clock_text(double s) {
   if (!std::isfinite(s) || s < 0) return "?";

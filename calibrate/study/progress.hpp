@@ -8,6 +8,9 @@
 
 namespace seedcal {
 
+// The current UTC time as ISO 8601 (2026-12-01T18:07:17Z).
+std::string utc_now();
+
 class Progress {
  public:
   Progress(const std::string& log_path, bool terminal, int slots);

@@ -13,15 +13,6 @@
 namespace seedcal {
 namespace {
 
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std::string& hash) {
   const std::string path = o.out_dir + "/study.h5";
   if (std::filesystem::exists(path)) {
