@@ -1,6 +1,8 @@
 #include "calibrate/study/mpi_executor.hpp"
 
+#include <chrono>
 #include <cstdlib>
+#include <thread>
 #include <deque>
 #include <string>
 
@@ -57,6 +59,11 @@ class MpiExecutor final : public Executor {
         busy[static_cast<std::size_t>(r)] = static_cast<long>(queue.front());
         send(requests[queue.front()].to_json().dump(), r, kTagRequest);
         queue.pop_front();
+      }
+      // Poll politely: a blocking receive spins a core that a worker rank on this node could use.
+      for (int flag = 0; !flag;) {
+        MPI_Iprobe(MPI_ANY_SOURCE, kTagRecord, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+        if (!flag) std::this_thread::sleep_for(std::chrono::milliseconds(2));
       }
       MPI_Status status;
       const std::string text = receive(MPI_ANY_SOURCE, kTagRecord, &status);
