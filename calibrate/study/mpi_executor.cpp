@@ -93,20 +93,18 @@ MpiSession::MpiSession(int* argc, char*** argv) {
 MpiSession::~MpiSession() {
   if (active_) MPI_Finalize();
 }
-int MpiSession::rank() {
+namespace {
+// MPI_Comm_rank / MPI_Comm_size of the world, or `fallback` when MPI is not initialised.
+int world_query(int (*query)(MPI_Comm, int*), int fallback) {
   int init = 0;
   MPI_Initialized(&init);
-  int r = 0;
-  if (init) MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
+  int v = fallback;
+  if (init) query(MPI_COMM_WORLD, &v);
+  return v;
 }
-int MpiSession::size() {
-  int init = 0;
-  MPI_Initialized(&init);
-  int n = 1;
-  if (init) MPI_Comm_size(MPI_COMM_WORLD, &n);
-  return n;
-}
+}  // namespace
+int MpiSession::rank() { return world_query(MPI_Comm_rank, 0); }
+int MpiSession::size() { return world_query(MPI_Comm_size, 1); }
 std::unique_ptr<Executor> make_mpi_executor(const std::string& config_hash) {
   return std::make_unique<MpiExecutor>(config_hash);
 }
