@@ -3,6 +3,7 @@
 // steepest ascent -> surrogate -> solve -> confirm (with infill). Each stage reads what the ones
 // before it decided from PipelineState, plans its DEM runs through the StudyEvaluator (which
 // answers finished runs from the store), and records its design and fits in the store.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ struct PipelineState {
   nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
   bool converged = false;
   int rounds = 0;
+
+  bool is_kept(int parameter) const { return std::find(kept.begin(), kept.end(), parameter) != kept.end(); }
 };
 
 // Index of the target that drives the one-target stages (ascent): the largest weight, first wins.
@@ -38,6 +41,11 @@ Eigen::VectorXd full_point(const PipelineState& st, const Eigen::VectorXd& kept_
 // inside replicates, as StudyEvaluator::plan makes them); NaN where every replicate failed.
 Eigen::MatrixXd mean_responses(const StudyConfig& s, const std::vector<EvaluationRecord>& records, int points,
                                int replicates);
+
+// The response-surface design (coded -1 .. 1) for k kept factors: five levels for one, a
+// face-centred CCD for two (or when the study asks for "ccd"), Box-Behnken for 3 to 7; `name`
+// (optional) receives the design's name.
+Eigen::MatrixXd surrogate_design(const StudyConfig& s, int k, std::string* name = nullptr);
 
 nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
 nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& store);

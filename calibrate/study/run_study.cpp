@@ -38,8 +38,7 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   nlohmann::json calibrated = nlohmann::json::object(), held = nlohmann::json::object();
   if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
     for (std::size_t p = 0; p < s.parameters.size(); ++p) {
-      const bool kept = std::find(st.kept.begin(), st.kept.end(), static_cast<int>(p)) != st.kept.end();
-      (kept ? calibrated : held)[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
+      (st.is_kept(static_cast<int>(p)) ? calibrated : held)[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
     }
   }
   j["calibrated"] = calibrated;
@@ -151,8 +150,7 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   progress.log("ascent: " + ascent.value("stop_reason", ascent.value("skipped", std::string())));
   checkpoint("ascent");
 
-  const int k = static_cast<int>(st.kept.size());
-  const int design_runs = (k == 1 ? 4 : k == 2 ? 8 : 2 * k * (k - 1)) + s.surrogate.center_points;
+  const auto design_runs = static_cast<int>(surrogate_design(s, static_cast<int>(st.kept.size())).rows());
   progress.stage("surrogate", design_runs * s.surrogate.replicates * static_cast<int>(s.targets.size()));
   run_surrogate_design(ev, st, store);
   const auto solved = fit_and_solve(ev, st, store, "solve_round_1");

@@ -95,13 +95,11 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
   st.nominal.resize(np);
   for (int j = 0; j < np; ++j) st.nominal(j) = s.parameters[static_cast<std::size_t>(j)].nominal;
 
+  std::vector<doe::Factor> factors;
+  for (const auto& p : s.parameters) factors.push_back({p.path, p.low, p.high});
+  const Eigen::MatrixXd natural = doe::to_natural(d.coded.leftCols(np), factors);
   std::vector<EvalRequest> requests;
-  Eigen::MatrixXd natural(d.runs(), np);
   for (int i = 0; i < d.runs(); ++i) {
-    for (int j = 0; j < np; ++j) {
-      const auto& p = s.parameters[static_cast<std::size_t>(j)];
-      natural(i, j) = 0.5 * (p.low + p.high) + 0.5 * (p.high - p.low) * d.coded(i, j);
-    }
     const auto r = ev.plan("screen", natural.row(i).transpose(), s.screen.replicates);
     requests.insert(requests.end(), r.begin(), r.end());
   }

@@ -10,6 +10,7 @@
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "calibrate/store/study_store.hpp"
+#include "calibrate/study/pipeline.hpp"
 
 namespace seedcal {
 namespace {
@@ -126,7 +127,8 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
   if (!s.targets.empty() && any_calibrated) {
     int k = 0;
     for (const auto& p : s.parameters) k += p.calibrate ? 1 : 0;
-    const int design = (k == 1 ? 4 : k == 2 ? 8 : 2 * k * (k - 1)) + s.surrogate.center_points;
+    if (k > 10) root.error("parameter", "at most 10 parameters can have calibrate = true (the surrogate designs go up to 10 factors)");
+    const auto design = k > 10 ? 0 : static_cast<int>(surrogate_design(s, k).rows());
     const int nt = static_cast<int>(s.targets.size());
     const int minimum = nt * (s.screen.runs * s.screen.replicates + design * s.surrogate.replicates + s.confirm.replicates);
     if (s.confirm.max_evaluations < minimum) {

@@ -26,28 +26,6 @@ namespace {
 Eigen::VectorXd box_mid(const PipelineState& st) { return 0.5 * (st.box_lo + st.box_hi); }
 Eigen::VectorXd box_half(const PipelineState& st) { return 0.5 * (st.box_hi - st.box_lo); }
 
-Eigen::MatrixXd design_points(const StudyConfig& s, int k, std::string* name) {
-  if (k == 1) {
-    *name = "five levels";
-    Eigen::MatrixXd d(4 + s.surrogate.center_points, 1);
-    d << -1.0, -0.5, 0.5, 1.0, Eigen::VectorXd::Zero(s.surrogate.center_points);
-    return d;
-  }
-  if (k >= 3 && k <= 7 && s.surrogate.design != "ccd") {
-    *name = "Box-Behnken";
-    doe::BoxBehnkenOptions o;
-    o.factors = k;
-    o.center_points = s.surrogate.center_points;
-    return doe::box_behnken(o).coded;
-  }
-  *name = "central composite (face-centred)";
-  doe::CentralCompositeOptions o;
-  o.factors = k;
-  o.type = doe::CcdType::face_centered;
-  o.center_points = s.surrogate.center_points;
-  return doe::central_composite(o).coded;
-}
-
 struct TargetFit {
   std::string kind;             // "quadratic" or "gp"
   doe::Surface surface;         // in box-coded units
@@ -134,6 +112,30 @@ nlohmann::json trace_curve(const doe::Surface& f, double target, const PipelineS
 
 }  // namespace
 
+Eigen::MatrixXd surrogate_design(const StudyConfig& s, int k, std::string* name) {
+  std::string unused;
+  if (!name) name = &unused;
+  if (k == 1) {
+    *name = "five levels";
+    Eigen::MatrixXd d(4 + s.surrogate.center_points, 1);
+    d << -1.0, -0.5, 0.5, 1.0, Eigen::VectorXd::Zero(s.surrogate.center_points);
+    return d;
+  }
+  if (k >= 3 && k <= 7 && s.surrogate.design != "ccd") {
+    *name = "Box-Behnken";
+    doe::BoxBehnkenOptions o;
+    o.factors = k;
+    o.center_points = s.surrogate.center_points;
+    return doe::box_behnken(o).coded;
+  }
+  *name = "central composite (face-centred)";
+  doe::CentralCompositeOptions o;
+  o.factors = k;
+  o.type = doe::CcdType::face_centered;
+  o.center_points = s.surrogate.center_points;
+  return doe::central_composite(o).coded;
+}
+
 void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, int target, Eigen::MatrixXd* U,
                            Eigen::VectorXd* y) {
   const StudyConfig& s = ev.study();
@@ -147,7 +149,7 @@ void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, in
     const Eigen::VectorXd x = ev.inputs_vector(r);
     bool on = true;  // the held parameters at nominal
     for (Eigen::Index j = 0; j < x.size(); ++j)
-      if (std::find(st.kept.begin(), st.kept.end(), static_cast<int>(j)) == st.kept.end() && x(j) != st.nominal(j)) on = false;
+      if (!st.is_kept(static_cast<int>(j)) && x(j) != st.nominal(j)) on = false;
     Eigen::VectorXd u(k);
     for (int q = 0; q < k; ++q) u(q) = (x(st.kept[static_cast<std::size_t>(q)]) - mid(q)) / half(q);
     if (!on || u.cwiseAbs().maxCoeff() > 1.0 + 1e-9) continue;
@@ -167,7 +169,7 @@ nlohmann::json run_surrogate_design(StudyEvaluator& ev, PipelineState& st, Study
   const StudyConfig& s = ev.study();
   const int k = static_cast<int>(st.kept.size());
   std::string name;
-  const Eigen::MatrixXd coded = design_points(s, k, &name);
+  const Eigen::MatrixXd coded = surrogate_design(s, k, &name);
   std::vector<EvalRequest> requests;
   nlohmann::json natural = nlohmann::json::array();
   for (Eigen::Index i = 0; i < coded.rows(); ++i) {
