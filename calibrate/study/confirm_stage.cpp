@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include <gsl/gsl_cdf.h>
+#include <gsl/gsl_statistics_double.h>
 
 #include "calibrate/study/pipeline.hpp"
 #include "doe/surrogate/acquisition.hpp"
@@ -41,11 +42,8 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round) {
       out["targets"][s.targets[t].metric] = c;
       continue;
     }
-    double mean = 0.0, var = 0.0;
-    for (double x : v) mean += x;
-    mean /= static_cast<double>(v.size());
-    for (double x : v) var += (x - mean) * (x - mean);
-    const double sd = std::sqrt(var / static_cast<double>(v.size() - 1));
+    const double mean = gsl_stats_mean(v.data(), 1, v.size());
+    const double sd = gsl_stats_sd_m(v.data(), 1, v.size(), mean);  // sample sd (n - 1)
     const double e = mean / T - 1.0;
     const double q = gsl_cdf_tdist_Pinv(0.5 * (1.0 + s.confirm.confidence), static_cast<double>(v.size() - 1));
     const double half = q * sd / (std::sqrt(static_cast<double>(v.size())) * std::fabs(T));

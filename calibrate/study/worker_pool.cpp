@@ -20,6 +20,18 @@
 namespace seedcal {
 namespace {
 
+// Writes all of `s` (retrying short writes and EINTR); false when the other end is gone.
+bool write_all(int fd, const std::string& s) {
+  std::size_t off = 0;
+  while (off < s.size()) {
+    const ssize_t n = ::write(fd, s.data() + off, s.size() - off);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    off += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
 struct Worker {
   pid_t pid = -1;
   int to_fd = -1;    // the worker's stdin
@@ -132,17 +144,6 @@ class WorkerPool final : public Executor {
     done(i, failed_record(requests[i], why));
   }
 
-  static bool write_all(int fd, const std::string& s) {
-    std::size_t off = 0;
-    while (off < s.size()) {
-      const ssize_t n = ::write(fd, s.data() + off, s.size() - off);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) return false;
-      off += static_cast<std::size_t>(n);
-    }
-    return true;
-  }
-
   void start(Worker& w) {
     int in[2], out[2];
     if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(out, O_CLOEXEC) != 0) throw RunFailed(std::string("cannot create a pipe: ") + std::strerror(errno));
@@ -205,14 +206,7 @@ int run_worker_loop(const StudyConfig& study, int threads, const std::string& co
     const std::string line = buffer.substr(0, nl);
     buffer.erase(0, nl + 1);
     const EvalRequest req = EvalRequest::from_json(nlohmann::json::parse(line));
-    const std::string answer = evaluate(study, req, threads, config_hash).to_json().dump() + "\n";
-    std::size_t off = 0;
-    while (off < answer.size()) {
-      const ssize_t n = ::write(out_fd, answer.data() + off, answer.size() - off);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) return 1;
-      off += static_cast<std::size_t>(n);
-    }
+    if (!write_all(out_fd, evaluate(study, req, threads, config_hash).to_json().dump() + "\n")) return 1;
   }
 }
 
