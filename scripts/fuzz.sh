@@ -1,24 +1,17 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (build-fuzz/) and runs each for a bounded time on a seed
+# Builds the libFuzzer targets in the clang sanitizer build (build-asan/, preset asan) and runs each for a bounded time on a seed
 # corpus taken from data/ (STL files are made here: one binary, one ASCII tetrahedron).
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET]   (default 60). A finding stops with exit 1 and
-# leaves its input as build-fuzz/crash-* (add it to tests as a regression case).
+# leaves its input as build-asan/crash-* (add it to tests as a regression case).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/packages.sh
 seconds="${1:-60}"
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO=sudo
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
-cmake --preset fuzz >/dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_stl fuzz_study fuzz_clump
+ensure_packages "${sanitizer_packages[@]}"
+if [ ! -f build-asan/build.ninja ]; then cmake --preset asan >/dev/null; fi
+cmake --build build-asan -j "$(nproc)" --target fuzz_stl fuzz_study fuzz_clump
 
-corpus=build-fuzz/corpus
+corpus=build-asan/corpus
 rm -rf "$corpus"
 mkdir -p "$corpus/stl" "$corpus/study" "$corpus/clump"
 cp data/studies/*.toml "$corpus/study/"
@@ -50,6 +43,6 @@ PY
 
 for target in stl study clump; do
   echo "== fuzz_$target: ${seconds} s =="
-  (cd build-fuzz && ASAN_OPTIONS=detect_leaks=0 ./fuzz_$target -max_total_time="$seconds" -timeout=10 \
+  (cd build-asan && ASAN_OPTIONS=detect_leaks=0 ./fuzz_$target -max_total_time="$seconds" -timeout=10 \
      -rss_limit_mb=2048 -print_final_stats=1 "corpus/$target" 2>&1 | tail -12)  # pipefail: a finding fails
 done

@@ -3,6 +3,7 @@
 # Usage: scripts/setup.sh [--preset release|ci]   (run as root on a fresh machine, or with sudo)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/packages.sh
 preset=release
 if [ "${1:-}" = "--preset" ]; then preset="$2"; fi
 
@@ -12,16 +13,7 @@ packages=(build-essential cmake ninja-build pkg-config
           libeigen3-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev libtoml11-dev libcli11-dev
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
           libopenmpi-dev openmpi-bin)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "seedcal setup: installing ${missing[*]}"
-  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO=sudo
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+ensure_packages "${packages[@]}"
 
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset" -j "$(nproc)"

@@ -2,10 +2,13 @@
 # The whole test suite, in stages. Expects scripts/setup.sh to have built build/ (the README's
 # test command builds it with --preset ci: Release, warnings as errors).
 #   1. Release suite: every ctest test (unit, physics, regression, cli).
-#   2. ASan + UBSan build of the same suite (tests labelled `slow` left out to stay in budget).
-# Set SEEDCAL_SKIP_SANITIZE=1 to run stage 1 only (local iteration).
+#   2. ASan + UBSan build (clang) of the same suite (tests labelled `slow` left out to stay in budget).
+#   3. The libFuzzer targets of that build (STL, study and clump readers), 60 s each.
+# Set SEEDCAL_SKIP_SANITIZE=1 to run stage 1 only (local iteration), SEEDCAL_FUZZ_SECONDS=N to
+# change the fuzzing time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/packages.sh
 jobs=$(nproc)
 start=$(date +%s)
 
@@ -13,12 +16,16 @@ echo "== stage 1: Release test suite =="
 ctest --test-dir build --output-on-failure -j "$jobs"
 
 if [ "${SEEDCAL_SKIP_SANITIZE:-0}" != "1" ]; then
-  echo "== stage 2: AddressSanitizer + UndefinedBehaviorSanitizer =="
+  echo "== stage 2: AddressSanitizer + UndefinedBehaviorSanitizer (clang, -O1) =="
+  ensure_packages "${sanitizer_packages[@]}"
   cmake --preset asan >/dev/null
   cmake --build --preset asan -j "$jobs"
   # detect_leaks: OpenMP's runtime keeps its thread pool alive at exit; leaks are still reported
   # for everything else by the tests' own checks.
   ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE slow
+
+  echo "== stage 3: libFuzzer, ${SEEDCAL_FUZZ_SECONDS:-60} s per target =="
+  bash scripts/fuzz.sh "${SEEDCAL_FUZZ_SECONDS:-60}"
 fi
 echo "== all stages passed in $(( $(date +%s) - start )) s =="

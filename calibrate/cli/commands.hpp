@@ -6,6 +6,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "calibrate/cli/version_string.hpp"
+
 namespace seedcal {
 
 // Options every subcommand shares (DESIGN.md, "Interface").
@@ -27,8 +29,5 @@ void add_calibrate_command(CLI::App& app, GlobalOptions& g);
 void add_report_command(CLI::App& app, GlobalOptions& g);
 void add_study_command(CLI::App& app, GlobalOptions& g);
 void add_bench_command(CLI::App& app, GlobalOptions& g);
-
-// Provenance block every output records: version, revision, seed, threads, command line.
-std::string version_string();
 
 }  // namespace seedcal

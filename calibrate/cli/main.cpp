@@ -4,7 +4,6 @@
 
 #include "calibrate/cli/commands.hpp"
 #include "calibrate/cli/errors.hpp"
-#include "calibrate/cli/version.hpp"
 #include "calibrate/study/mpi_executor.hpp"
 
 namespace seedcal {
@@ -22,8 +21,6 @@ void add_common_options(CLI::App& sub, GlobalOptions& g) {
          "--seed", [&g](const std::uint64_t& s) { g.seed = s; g.seed_given = true; },
          "random seed (default 1)");
 }
-
-std::string version_string() { return std::string(kVersion) + " (" + kGitRevision + ")"; }
 
 }  // namespace seedcal
 

@@ -5,7 +5,7 @@
 #include <ctime>
 #include <limits>
 
-#include "calibrate/cli/commands.hpp"
+#include "calibrate/cli/version_string.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "calibrate/scenes/scene_registry.hpp"

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "calibrate/cli/commands.hpp"
+#include "calibrate/cli/version_string.hpp"
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/io/atomic_file.hpp"
 #include "calibrate/study/pipeline.hpp"

@@ -13,7 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "calibrate/cli/commands.hpp"
+#include "calibrate/cli/version_string.hpp"
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/study/executor.hpp"
 
