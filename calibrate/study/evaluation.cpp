@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
 #include <limits>
 
 #include "calibrate/cli/version_string.hpp"
@@ -25,7 +26,10 @@ std::string number_text(double v) {
 }  // namespace
 
 nlohmann::json EvalRequest::to_json() const {
-  return {{"stage", stage}, {"target", target}, {"inputs", inputs}, {"seed", seed}};
+  nlohmann::json j = {{"stage", stage}, {"target", target}, {"inputs", inputs}, {"seed", seed}};
+  if (model != 0) j["model"] = model;
+  if (!out_dir.empty()) j["out_dir"] = out_dir;
+  return j;
 }
 
 EvalRequest EvalRequest::from_json(const nlohmann::json& j) {
@@ -34,6 +38,8 @@ EvalRequest EvalRequest::from_json(const nlohmann::json& j) {
   r.target = j.at("target").get<int>();
   r.inputs = j.at("inputs");
   r.seed = j.at("seed").get<std::uint64_t>();
+  r.model = j.value("model", 0);
+  r.out_dir = j.value("out_dir", std::string());
   return r;
 }
 
@@ -45,19 +51,22 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
   rec.seed = request.seed;
   rec.config_hash = config_hash;
   rec.seedcal_version = version_string();
-  const StudyTarget& target = study.targets.at(static_cast<std::size_t>(request.target));
+  const StudyTarget& target = study.scene_of(request.target);
+  const StudyModel& model = study.models.at(static_cast<std::size_t>(request.model));
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   try {
     toml::value doc = TomlReader::parse_file(target.scene);
-    std::vector<std::string> sets = target.sets;
+    std::vector<std::string> sets = model.sets;
+    sets.insert(sets.end(), target.sets.begin(), target.sets.end());
     for (const auto& [path, value] : request.inputs.items()) sets.push_back(path + "=" + number_text(value.get<double>()));
     apply_overrides(doc, sets);
     const std::string kind = doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
     const auto& reg = scene_registry();
     const auto it = reg.find(kind);
     if (it == reg.end()) throw InputError(target.scene + ": kind = \"" + kind + "\": unknown scene kind");
-    SceneContext ctx{target.scene, "", threads, request.seed};
+    SceneContext ctx{target.scene, request.out_dir, threads, request.seed};
+    if (!request.out_dir.empty()) std::filesystem::create_directories(request.out_dir);
     rec.metrics = run_repeated(it->second, doc, target.scene, ctx, 1);
     rec.status = rec.metrics.value("status", "ok");
     if (rec.status != "ok" && rec.metrics.contains("failure"))
@@ -79,6 +88,7 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
   if (rec.metrics.contains("runs")) rec.metrics.erase("runs");  // one run: the same numbers again
   rec.metrics["study_target"] = request.target;
   rec.metrics["study_target_name"] = target.name;
+  if (request.model != 0) rec.metrics["study_model"] = model.name;
   rec.cpu_seconds = rec.metrics.value("cpu_seconds", static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC);
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return rec;
@@ -86,9 +96,8 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
 
 double record_metric(const StudyConfig& study, const EvaluationRecord& r) {
   const int t = record_target(r);
-  if (r.status != "ok" || t < 0 || t >= static_cast<int>(study.targets.size()))
-    return std::numeric_limits<double>::quiet_NaN();
-  const auto m = r.metrics.find(study.targets[static_cast<std::size_t>(t)].metric);
+  if (r.status != "ok" || t < 0 || t >= study.scene_count()) return std::numeric_limits<double>::quiet_NaN();
+  const auto m = r.metrics.find(study.scene_of(t).metric);
   return m != r.metrics.end() && m->is_number() ? m->get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 

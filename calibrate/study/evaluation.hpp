@@ -15,9 +15,11 @@ namespace seedcal {
 
 struct EvalRequest {
   std::string stage;              // screen, ascent, surrogate, confirm, infill
-  int target = 0;                 // index into StudyConfig::targets
+  int target = 0;                 // StudyConfig::scene_of index: a target, then the verification tests
+  int model = 0;                  // index into StudyConfig::models (its overrides apply first)
   nlohmann::json inputs;          // parameter path -> natural value (every study parameter)
   std::uint64_t seed = 0;         // unique within the study
+  std::string out_dir;            // when set, the scene also writes its CSV and picture here
 
   nlohmann::json to_json() const;
   static EvalRequest from_json(const nlohmann::json& j);
@@ -28,7 +30,8 @@ struct EvalRequest {
 EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,
                           const std::string& config_hash);
 
-// The value of the target's metric in a record (NaN when the run failed or lacks it).
+// The value of the record's scene metric (target or verification test; NaN when the run failed or
+// lacks it).
 double record_metric(const StudyConfig& study, const EvaluationRecord& r);
 // The target index a record belongs to (from its metrics), -1 when unknown.
 int record_target(const EvaluationRecord& r);

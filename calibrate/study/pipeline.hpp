@@ -27,6 +27,9 @@ struct PipelineState {
   nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
   bool converged = false;
   int rounds = 0;
+  int calibration_runs = -1;        // DEM runs of stages 1-5 (set when confirmation ends)
+  nlohmann::json verification;      // stage 6: the chosen model's tests
+  nlohmann::json selection;         // stage 7: every model, the Pareto front and the choice
 
   bool is_kept(int parameter) const { return std::find(kept.begin(), kept.end(), parameter) != kept.end(); }
 };
@@ -61,5 +64,8 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
 // Confirms at st.chosen; while not converged and the budget allows, adds infill points and
 // re-solves.
 nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
+// the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
+nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir);
 
 }  // namespace seedcal

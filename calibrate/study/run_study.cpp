@@ -49,12 +49,17 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   j["confirmed"] = st.confirmed.is_null() ? nlohmann::json::object() : st.confirmed;
   j["converged"] = st.converged;
   j["confirmation_rounds"] = st.rounds;
-  j["evaluations"] = ev.runs_used();
+  // Calibration runs (stages 1-5: what the classical workflow's count compares with); the
+  // verification runs come on top.
+  j["evaluations"] = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
+  j["evaluations_total"] = ev.runs_used();
   j["evaluations_from_store"] = ev.runs_reused();
   j["classical_workflow_evaluations"] =
       3 * (s.screen.runs + 5 + 13) + 3;  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations
   j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
   j["tolerance"] = s.confirm.tolerance;
+  if (!st.verification.is_null()) j["verification"] = st.verification;
+  if (!st.selection.is_null()) j["model_selection"] = st.selection;
   // A digest of the stages (the full designs and fits are in study.h5, /stages).
   const auto& stages = store.stages();
   nlohmann::json digest = nlohmann::json::object();
@@ -83,9 +88,11 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   }
   if (stages.contains("confirm")) digest["confirm_stop_reason"] = stages["confirm"].value("stop_reason", std::string("running"));
   j["stages"] = digest;
-  double cpu = 0.0;
-  for (const auto& r : ev.history()) cpu += r.cpu_seconds;
-  j["cpu_seconds"] = cpu;
+  double cpu = 0.0, cpu_verify = 0.0;
+  for (const auto& r : ev.history()) (r.stage == "verify" ? cpu_verify : cpu) += r.cpu_seconds;
+  j["cpu_seconds"] = cpu + cpu_verify;
+  j["calibration_cpu_seconds"] = cpu;
+  j["verification_cpu_seconds"] = cpu_verify;
   double wall = 0.0;
   if (store.stages().contains("sessions"))
     for (const auto& x : store.stages()["sessions"]) wall += x.value("wall_seconds", 0.0);
@@ -160,6 +167,15 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   const auto confirm = run_confirmation(ev, st, store);
   progress.log("confirm: " + confirm.value("stop_reason", std::string()) + ", " + std::to_string(ev.runs_used()) +
                " DEM runs");
+  st.calibration_runs = ev.runs_used();
+  checkpoint("confirm");
+
+  // Verification and model selection run only when the study asks for them (tests or models).
+  if (!s.checks.empty() || s.models.size() > 1) {
+    const auto selection = run_verification(ev, st, store, o.out_dir);
+    progress.log("verify: chosen model " + selection["chosen"].dump() + ", " + std::to_string(ev.runs_used()) +
+                 " DEM runs in all");
+  }
   return checkpoint("done");
 }
 

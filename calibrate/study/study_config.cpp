@@ -39,6 +39,39 @@ void read_target(TomlReader& t, StudyConfig& s) {
   s.targets.push_back(std::move(tg));
 }
 
+// [[verify.test]]: a scene run at the calibrated values and compared with its experiment.
+void read_check(TomlReader& t, StudyConfig& s) {
+  StudyTarget c;
+  const std::string scene = t.string("scene");
+  c.metric = t.string("metric");
+  c.name = t.string("name", c.metric);
+  c.has_value = t.has("value");
+  c.value = t.number("value", Range::open(-1e300, 1e300), 0.0);
+  if (c.has_value && c.value == 0.0) t.error("value", "= 0: an experimental value must be non-zero (errors are relative)");
+  c.sd = t.number("sd", Range::non_negative(), 0.0);
+  if (t.has("sd") && !c.has_value) t.error("sd", "is given without a value");
+  c.replicates = static_cast<int>(t.integer("replicates", 1, 50, 0));
+  if (t.has("set")) c.sets = t.strings("set", 0, 64);
+  if (!scene.empty()) {
+    c.scene = resolve_data_path(scene, s.file);
+    if (!std::filesystem::exists(c.scene)) t.error("scene", "= \"" + scene + "\": no such file");
+  }
+  t.check_unknown_keys();
+  for (const auto& q : s.checks)
+    if (q.name == c.name) t.error("name", "= \"" + c.name + "\" is used by two verification tests");
+  s.checks.push_back(std::move(c));
+}
+
+void read_model(TomlReader& t, StudyConfig& s) {
+  StudyModel m;
+  m.name = t.string("name");
+  if (t.has("set")) m.sets = t.strings("set", 0, 64);
+  t.check_unknown_keys();
+  for (const auto& q : s.models)
+    if (q.name == m.name) t.error("name", "= \"" + m.name + "\" is used by two models");
+  s.models.push_back(std::move(m));
+}
+
 void read_parameter(TomlReader& t, StudyConfig& s) {
   StudyParameter p;
   p.path = t.string("path");
@@ -64,6 +97,11 @@ int StudyConfig::index_of(const std::string& path) const {
   for (std::size_t i = 0; i < parameters.size(); ++i)
     if (parameters[i].path == path) return static_cast<int>(i);
   return -1;
+}
+
+const StudyTarget& StudyConfig::scene_of(int index) const {
+  const auto i = static_cast<std::size_t>(index);
+  return i < targets.size() ? targets.at(i) : checks.at(i - targets.size());
 }
 
 StudyConfig read_study(const std::string& path, const std::vector<std::string>& sets) {
@@ -122,6 +160,14 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
     s.confirm.max_rounds = static_cast<int>(t->integer("max_rounds", 1, 100, s.confirm.max_rounds));
     t->check_unknown_keys();
   }
+  if (auto t = root.table("verify")) {
+    s.verify.replicates = static_cast<int>(t->integer("replicates", 1, 50, s.verify.replicates));
+    s.verify.error_margin = t->number("error_margin", Range::closed(0.0, 1.0), s.verify.error_margin);
+    for (auto& c : t->table_array("test")) read_check(c, s);
+    t->check_unknown_keys();
+  }
+  for (auto& m : root.table_array("model")) read_model(m, s);
+  if (s.models.empty()) s.models.push_back({"default", {}});
   // The budget must at least pay for screening, the smallest surrogate design (the calibrated
   // parameters only) and one confirmation.
   if (!s.targets.empty() && any_calibrated) {
@@ -144,18 +190,24 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
 
 std::string study_fingerprint(const StudyConfig& s) {
   std::string all = s.text;
-  for (const auto& t : s.targets) {
+  std::set<std::string> clumps;
+  for (int i = 0; i < s.scene_count(); ++i) {
+    const StudyTarget& t = s.scene_of(i);
     all += "\n--- " + t.scene + "\n" + read_text(t.scene);
-    try {  // the clump file the scene names, when it names one
-      const toml::value scene = TomlReader::parse_file(t.scene);
-      if (scene.contains("particle") && scene.at("particle").contains("clump_file")) {
-        const std::string clump = resolve_data_path(scene.at("particle").at("clump_file").as_string().str, t.scene);
-        all += "\n--- " + clump + "\n" + read_text(clump);
+    for (const auto& m : s.models) {
+      try {  // the clump file the scene names under each model, when it names one
+        toml::value scene = TomlReader::parse_file(t.scene);
+        std::vector<std::string> sets = m.sets;
+        sets.insert(sets.end(), t.sets.begin(), t.sets.end());
+        apply_overrides(scene, sets);
+        if (scene.contains("particle") && scene.at("particle").contains("clump_file"))
+          clumps.insert(resolve_data_path(scene.at("particle").at("clump_file").as_string().str, t.scene));
+      } catch (const std::exception&) {
+        // an unreadable scene or override is reported when it runs
       }
-    } catch (const std::exception&) {
-      // an unreadable scene is reported when it runs
     }
   }
+  for (const auto& clump : clumps) all += "\n--- " + clump + "\n" + read_text(clump);
   return fnv1a_hex(all);
 }
 

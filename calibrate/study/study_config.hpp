@@ -18,6 +18,23 @@ struct StudyTarget {
   std::string metric;            // key of the scene's metrics.json (e.g. shear_strength_pa)
   double value = 0.0;            // the measured value the study fits
   double weight = 1.0;           // joint mode: weight of this target's squared relative error
+  // Verification tests ([[verify.test]]) only: the experiment's sd (0: not given), and whether the
+  // experiment gave a value at all (without one the test is reported as simulation only).
+  double sd = 0.0;
+  bool has_value = true;
+  int replicates = 0;            // verification tests: runs per model (0: verify.replicates)
+};
+
+// A clump model the study verifies and selects among ([[model]]): overrides applied to every scene
+// of the study (e.g. particle.clump_file=...). The first model is the one the study calibrates.
+struct StudyModel {
+  std::string name;
+  std::vector<std::string> sets;
+};
+
+struct VerifySettings {
+  int replicates = 2;            // DEM runs per verification test and model (fresh seeds)
+  double error_margin = 0.02;    // selection: cheapest model within this of the lowest mean |error|
 };
 
 struct StudyParameter {
@@ -68,10 +85,16 @@ struct StudyConfig {
   AscentSettings ascent;
   SurrogateSettings surrogate;
   ConfirmSettings confirm;
+  std::vector<StudyTarget> checks;  // stage 6: verification tests at the calibrated values
+  std::vector<StudyModel> models;   // stage 7: never empty (one model with no overrides by default)
+  VerifySettings verify;
   std::string text;              // the study file after overrides (recorded in the store)
   toml::value doc;
 
   int index_of(const std::string& path) const;  // -1 when not a parameter
+  // Scenes a request can name: the targets (0 .. T-1), then the verification tests (T ..).
+  int scene_count() const { return static_cast<int>(targets.size() + checks.size()); }
+  const StudyTarget& scene_of(int index) const;
 };
 
 // Reads and validates a study file (throws InputError with every problem found).

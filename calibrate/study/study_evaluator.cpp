@@ -15,17 +15,22 @@ StudyEvaluator::StudyEvaluator(const StudyConfig& study, StudyStore& store, Exec
 std::vector<EvalRequest> StudyEvaluator::plan(const std::string& stage, const Eigen::VectorXd& natural, int replicates) {
   std::vector<EvalRequest> out;
   for (int rep = 0; rep < replicates; ++rep)
-    for (std::size_t t = 0; t < study_.targets.size(); ++t) {
-      EvalRequest r;
-      r.stage = stage;
-      r.target = static_cast<int>(t);
-      r.inputs = nlohmann::json::object();
-      for (std::size_t p = 0; p < study_.parameters.size(); ++p) r.inputs[study_.parameters[p].path] = natural(static_cast<Eigen::Index>(p));
-      // Seeds: the study seed's block of 2^20, one per planned run, never reused.
-      r.seed = study_.seed * (std::uint64_t{1} << 20) + (++counter_);
-      out.push_back(std::move(r));
-    }
+    for (std::size_t t = 0; t < study_.targets.size(); ++t) out.push_back(plan_one(stage, natural, static_cast<int>(t), 0));
   return out;
+}
+
+EvalRequest StudyEvaluator::plan_one(const std::string& stage, const Eigen::VectorXd& natural, int scene, int model,
+                                     const std::string& out_dir) {
+  EvalRequest r;
+  r.stage = stage;
+  r.target = scene;
+  r.model = model;
+  r.out_dir = out_dir;
+  r.inputs = nlohmann::json::object();
+  for (std::size_t p = 0; p < study_.parameters.size(); ++p) r.inputs[study_.parameters[p].path] = natural(static_cast<Eigen::Index>(p));
+  // Seeds: the study seed's block of 2^20, one per planned run, never reused.
+  r.seed = study_.seed * (std::uint64_t{1} << 20) + (++counter_);
+  return r;
 }
 
 std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>& requests) {
@@ -66,7 +71,9 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     ++used_;
     const int t = record_target(r);
     const double v = record_metric(study_, r);
-    if (t >= 0 && std::isfinite(v)) progress_.best_error(v / study_.targets[static_cast<std::size_t>(t)].value - 1.0);
+    if (t >= 0 && t < static_cast<int>(study_.targets.size()) && r.metrics.value("study_model", "").empty() &&
+        std::isfinite(v))
+      progress_.best_error(v / study_.targets[static_cast<std::size_t>(t)].value - 1.0);
   }
   return out;
 }

@@ -23,6 +23,10 @@ class StudyEvaluator {
 
   // A request for every target at `natural` (one value per study parameter).
   std::vector<EvalRequest> plan(const std::string& stage, const Eigen::VectorXd& natural, int replicates);
+  // One request: scene `scene` (StudyConfig::scene_of) under model `model`; `out_dir` asks the
+  // scene to write its CSV and picture there.
+  EvalRequest plan_one(const std::string& stage, const Eigen::VectorXd& natural, int scene, int model,
+                       const std::string& out_dir = "");
   // Runs the requests (store first), returns the records in request order.
   std::vector<EvaluationRecord> run(const std::vector<EvalRequest>& requests);
 

@@ -143,7 +143,7 @@ void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, in
   const Eigen::VectorXd mid = box_mid(st), half = box_half(st);
   std::vector<double> rows, ys;
   for (const auto& r : ev.history()) {
-    if (r.stage == "screen" || record_target(r) != target) continue;
+    if (r.stage == "screen" || r.stage == "verify" || record_target(r) != target) continue;
     const double v = record_metric(s, r);
     if (!std::isfinite(v)) continue;
     const Eigen::VectorXd x = ev.inputs_vector(r);

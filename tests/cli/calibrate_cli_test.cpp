@@ -151,3 +151,99 @@ TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
 
 }  // namespace
 }  // namespace seedcal::testing
+
+// Stages 6 and 7 on the impact scene: E is calibrated from the contact time, then every model
+// (here two time steps: a model is any set of overrides applied to every scene) runs the target
+// and two verification tests (one with an experiment, one simulation only). The fine step costs
+// ten times the CPU for no accuracy the margin can see, so the coarse one is chosen.
+TEST(CalibrateCli, VerifiesAndSelectsModels) {
+  const std::string dir = scratch_dir("calibrate-verify");
+  const double e0 = 3.3e10;
+  const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
+  const double force = m["max_normal_force_n"].get<double>();
+  char text[4096];
+  std::snprintf(text, sizeof text, R"(name = "impact-verify"
+seed = 5
+
+[[target]]
+scene = "%s%s"
+metric = "contact_duration_s"
+value = %.17g
+
+[[parameter]]
+path = "materials.glass.youngs_modulus_pa"
+low = 2.0e10
+high = 6.0e10
+calibrate = true
+
+[[parameter]]
+path = "glass_glass.restitution"
+low = 0.6
+high = 0.95
+nominal = 0.9
+
+[screen]
+runs = 8
+
+[confirm]
+replicates = 2
+tolerance = 0.005
+max_evaluations = 60
+
+[verify]
+replicates = 2
+error_margin = 0.02
+
+[[verify.test]]
+name = "peak force"
+scene = "%s%s"
+metric = "max_normal_force_n"
+value = %.17g
+sd = %.17g
+
+[[verify.test]]
+name = "overlap"
+scene = "%s%s"
+metric = "max_overlap_m"
+replicates = 1
+
+[[model]]
+name = "dt-2e-8"
+set = ["duration_s=1.0e-4", "dt_s=2.0e-8"]
+
+[[model]]
+name = "dt-2e-9"
+set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
+)",
+                source_dir().c_str(), kScene, m["contact_duration_s"].get<double>(), source_dir().c_str(), kScene, force,
+                0.01 * force, source_dir().c_str(), kScene);
+  write_text(dir + "/study.toml", text);
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  ASSERT_TRUE(s.contains("model_selection")) << s.dump(1);
+  const auto& sel = s["model_selection"];
+  ASSERT_EQ(sel["models"].size(), 2u);
+  EXPECT_EQ(sel["chosen"], "dt-2e-8") << sel.dump(1);
+  const auto& coarse = sel["models"][0];
+  const auto& fine = sel["models"][1];
+  EXPECT_GT(fine["cpu_seconds"].get<double>(), 2.0 * coarse["cpu_seconds"].get<double>()) << sel.dump(1);
+  EXPECT_TRUE(coarse["pareto"].get<bool>());
+  EXPECT_LE(coarse["mean_abs_rel_error"].get<double>(), 0.02) << sel.dump(1);
+  EXPECT_EQ(coarse["tests_with_experiment"], 2);  // the target and the peak force
+  // The chosen model's tests: the target, then the verification tests in file order.
+  const auto& tests = s["verification"]["tests"];
+  ASSERT_EQ(tests.size(), 3u) << s["verification"].dump(1);
+  EXPECT_EQ(tests[0]["role"], "target");
+  EXPECT_EQ(tests[0]["n"], 2);
+  EXPECT_EQ(tests[1]["test"], "peak force");
+  EXPECT_NEAR(tests[1]["rel_error"].get<double>(), 0.0, 0.01) << tests[1].dump(1);
+  EXPECT_TRUE(tests[1]["within_sd"].is_boolean());
+  EXPECT_EQ(tests[2]["n"], 1);
+  EXPECT_TRUE(tests[2]["rel_error"].is_null());
+  EXPECT_TRUE(tests[2]["experimental_mean"].is_null());
+  // Verification runs are counted apart from the calibration's.
+  EXPECT_EQ(s["evaluations_total"].get<int>(), s["evaluations"].get<int>() + 2 * (2 + 2 + 1));
+  EXPECT_TRUE(std::filesystem::is_directory(dir + "/out/scenes/dt_2e_8/peak_force"));
+  std::filesystem::remove_all(dir);
+}

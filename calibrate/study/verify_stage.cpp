@@ -1,0 +1,189 @@
+// Stages 6 and 7 (DESIGN.md, "Calibration pipeline"): verification and model selection.
+//
+// Verification: for every clump model of the study (its overrides applied to every scene) and
+// every test (the calibration targets, then the [[verify.test]] entries), `verify.replicates` (or
+// the test's own `replicates`) fresh DEM runs (unused seeds) at the calibrated values. Per test: mean, sample sd, relative error
+// e = mean / experiment - 1, and within_sd = |mean - experiment| <= experimental sd when the
+// experiment gives one. A test without an experimental value is reported as simulation only. The
+// first replicate of each test writes its CSV and picture under DIR/scenes/MODEL/TEST/.
+//
+// Selection, following the paper's section 3 (the models are compared at one set of calibrated
+// values, on every test, with their CPU time): per model
+//   error = mean of |e| over the tests with an experimental value,
+//   cost  = CPU seconds of one run of every test (each test's mean over its replicates, summed).
+// The Pareto front holds the models no other model beats on both. The chosen model is the
+// cheapest one whose error is within `verify.error_margin` of the lowest error: accuracy first,
+// and among models that are equally accurate within that margin, the fewest CPU seconds.
+// Also reported, for information: accuracy per CPU second = (1 - error) / cost.
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+#include <gsl/gsl_statistics_double.h>
+
+#include "calibrate/study/pipeline.hpp"
+
+namespace seedcal {
+namespace {
+
+std::string slug(const std::string& name) {
+  std::string out;
+  for (const char c : name) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return out.empty() ? std::string("test") : out;
+}
+
+nlohmann::json null_if_nan(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+// One test of one model from its replicate records.
+nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector<const EvaluationRecord*>& runs,
+                              double* cpu_per_run) {
+  const StudyTarget& t = s.scene_of(scene);
+  const bool is_target = scene < static_cast<int>(s.targets.size());
+  std::vector<double> v;
+  std::vector<std::uint64_t> seeds;
+  double cpu = 0.0;
+  nlohmann::json failures = nlohmann::json::array();
+  for (const auto* r : runs) {
+    cpu += r->cpu_seconds;
+    const double x = record_metric(s, *r);
+    if (std::isfinite(x)) {
+      v.push_back(x);
+      seeds.push_back(r->seed);
+    } else {
+      failures.push_back({{"seed", r->seed}, {"status", r->status}, {"message", r->message}});
+    }
+  }
+  *cpu_per_run = runs.empty() ? 0.0 : cpu / static_cast<double>(runs.size());
+  nlohmann::json j = {{"test", t.name}, {"label", t.name}, {"metric", t.metric}, {"role", is_target ? "target" : "verification"},
+                      {"n", v.size()}, {"samples", v}, {"seeds", seeds}, {"cpu_seconds", *cpu_per_run}};
+  if (!failures.empty()) j["failures"] = failures;
+  const double mean = v.empty() ? std::numeric_limits<double>::quiet_NaN() : gsl_stats_mean(v.data(), 1, v.size());
+  const double sd = v.size() < 2 ? std::numeric_limits<double>::quiet_NaN() : gsl_stats_sd_m(v.data(), 1, v.size(), mean);
+  j["mean"] = null_if_nan(mean);
+  j["sd"] = null_if_nan(sd);
+  if (t.has_value) {
+    j["experimental_mean"] = t.value;
+    j["experimental_sd"] = t.sd > 0.0 ? nlohmann::json(t.sd) : nlohmann::json(nullptr);
+    j["rel_error"] = null_if_nan(mean / t.value - 1.0);
+    j["within_sd"] = t.sd > 0.0 && std::isfinite(mean) ? nlohmann::json(std::fabs(mean - t.value) <= t.sd) : nlohmann::json(nullptr);
+  } else {
+    j["experimental_mean"] = nullptr;
+    j["experimental_sd"] = nullptr;
+    j["rel_error"] = nullptr;
+    j["within_sd"] = nullptr;
+    j["note"] = "simulation only: the study gives no experimental value";
+  }
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir) {
+  const StudyConfig& s = ev.study();
+  const int models = static_cast<int>(s.models.size());
+  const int scenes = s.scene_count();
+  auto reps_of = [&](int t) {
+    const int r = s.scene_of(t).replicates;
+    return t >= static_cast<int>(s.targets.size()) && r > 0 ? r : s.verify.replicates;
+  };
+  int planned = 0;
+  for (int t = 0; t < scenes; ++t) planned += models * reps_of(t);
+  ev.announce("verify", planned);
+  std::vector<EvalRequest> requests;
+  std::vector<std::vector<std::size_t>> first(static_cast<std::size_t>(models), std::vector<std::size_t>(static_cast<std::size_t>(scenes)));
+  for (int m = 0; m < models; ++m)
+    for (int t = 0; t < scenes; ++t) {
+      first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] = requests.size();
+      for (int rep = 0; rep < reps_of(t); ++rep) {
+        const std::string dir = rep == 0 ? out_dir + "/scenes/" + slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
+                                               slug(s.scene_of(t).name)
+                                         : std::string();
+        requests.push_back(ev.plan_one("verify", st.chosen, t, m, dir));
+      }
+    }
+  const auto records = ev.run(requests);
+
+  nlohmann::json rows = nlohmann::json::array();
+  std::vector<double> error(static_cast<std::size_t>(models)), cost(static_cast<std::size_t>(models));
+  for (int m = 0; m < models; ++m) {
+    nlohmann::json tests = nlohmann::json::array();
+    double sum_abs = 0.0, cpu = 0.0, spheres = 0.0;
+    int with_value = 0, within = 0, with_sd = 0;
+    bool complete = true;
+    for (int t = 0; t < scenes; ++t) {
+      std::vector<const EvaluationRecord*> runs;
+      for (int rep = 0; rep < reps_of(t); ++rep) {
+        const auto& r = records[first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] + static_cast<std::size_t>(rep)];
+        runs.push_back(&r);
+        if (r.status == "ok" && r.metrics.contains("bodies") && r.metrics.contains("spheres") &&
+            r.metrics["bodies"].get<double>() > 0)
+          spheres = r.metrics["spheres"].get<double>() / r.metrics["bodies"].get<double>();
+      }
+      double cpu_t = 0.0;
+      nlohmann::json j = summarise_test(s, t, runs, &cpu_t);
+      cpu += cpu_t;
+      if (!j["rel_error"].is_null()) {
+        sum_abs += std::fabs(j["rel_error"].get<double>());
+        ++with_value;
+      } else if (s.scene_of(t).has_value) {
+        complete = false;  // the experiment has a value but every run failed
+      }
+      if (!j["within_sd"].is_null()) {
+        ++with_sd;
+        within += j["within_sd"].get<bool>() ? 1 : 0;
+      }
+      tests.push_back(j);
+    }
+    const double err = with_value > 0 && complete ? sum_abs / with_value : std::numeric_limits<double>::quiet_NaN();
+    error[static_cast<std::size_t>(m)] = err;
+    cost[static_cast<std::size_t>(m)] = cpu;
+    rows.push_back({{"model", s.models[static_cast<std::size_t>(m)].name},
+                    {"set", s.models[static_cast<std::size_t>(m)].sets},
+                    {"spheres", spheres > 0 ? nlohmann::json(std::lround(spheres)) : nlohmann::json(nullptr)},
+                    {"tests", tests},
+                    {"mean_abs_rel_error", null_if_nan(err)},
+                    {"tests_with_experiment", with_value},
+                    {"within_sd", within},
+                    {"tests_with_sd", with_sd},
+                    {"cpu_seconds", cpu},
+                    {"accuracy_per_cpu_second", std::isfinite(err) && cpu > 0 ? nlohmann::json((1.0 - err) / cpu) : nlohmann::json(nullptr)}});
+  }
+  // Pareto front and the choice.
+  double best = std::numeric_limits<double>::infinity();
+  for (const double e : error)
+    if (std::isfinite(e)) best = std::min(best, e);
+  int chosen = -1;
+  for (int m = 0; m < models; ++m) {
+    const auto i = static_cast<std::size_t>(m);
+    bool dominated = !std::isfinite(error[i]);
+    for (int k = 0; k < models && !dominated; ++k) {
+      const auto j = static_cast<std::size_t>(k);
+      if (k == m || !std::isfinite(error[j])) continue;
+      dominated = error[j] <= error[i] && cost[j] <= cost[i] && (error[j] < error[i] || cost[j] < cost[i]);
+    }
+    rows[i]["pareto"] = !dominated;
+    if (std::isfinite(error[i]) && error[i] <= best + s.verify.error_margin &&
+        (chosen < 0 || cost[i] < cost[static_cast<std::size_t>(chosen)]))
+      chosen = m;
+  }
+  char rule[320];
+  std::snprintf(rule, sizeof rule,
+                "error = mean |relative error| over the tests with an experimental value; cost = CPU seconds of "
+                "one run of every test; chosen: the cheapest model whose error is within %.3g of the lowest (%.4g)",
+                s.verify.error_margin, std::isfinite(best) ? best : 0.0);
+  nlohmann::json selection = {{"rule", rule}, {"error_margin", s.verify.error_margin}, {"models", rows},
+                              {"chosen", chosen >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(chosen)].name)
+                                                     : nlohmann::json(nullptr)}};
+  if (chosen < 0) selection["note"] = "no model has an error on every test with an experimental value";
+  nlohmann::json at = nlohmann::json::object();
+  for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
+  const int shown = chosen >= 0 ? chosen : 0;
+  st.verification = {{"model", s.models[static_cast<std::size_t>(shown)].name}, {"replicates", s.verify.replicates}, {"point", at},
+                     {"tests", rows[static_cast<std::size_t>(shown)]["tests"]}};
+  st.selection = selection;
+  store.set_stage("verify", {{"point", at}, {"replicates", s.verify.replicates}, {"selection", selection}});
+  return selection;
+}
+
+}  // namespace seedcal
