@@ -26,6 +26,7 @@ PhysicsConfig read_physics(TomlReader& root) {
 
   // Time step: dt_s or a fraction of the Rayleigh step; 1e-12 s to 1 s is every sane DEM step.
   cfg.time_step.dt_s = root.number("dt_s", Range::closed(1e-12, 1.0), 0.0);
+  cfg.time_step.rayleigh_fraction_set = root.has("rayleigh_fraction");
   cfg.time_step.rayleigh_fraction = root.number("rayleigh_fraction", Range::left_open(0.0, 1.0), 0.2);
   cfg.time_step.force_dt = root.boolean("force_dt", false);
 

@@ -20,7 +20,9 @@ namespace seedcal {
 
 struct EpsdInput {
   Vec3 normal;              // contact normal (unit)
-  Vec3 relative_spin;       // w_i - w_j, rad/s
+  Vec3 relative_spin;       // w_i - w_j at the half step, rad/s (spring increment)
+  Vec3 relative_spin_end;   // w_i - w_j from the predicted end-of-step spins (dashpot; see
+                            // hertz_mindlin.hpp for why the two differ)
   double rolling_friction;  // mu_r
   double normal_force_n;
   double normal_stiffness_n_m;  // k_n (the Hertz tangent stiffness Sn)
@@ -50,7 +52,8 @@ inline Vec3 epsd_torque(const EpsdInput& in, Vec3& spring_moment) {
     return spring_moment;  // fully mobilised: no damping (type C, f = 0)
   }
   const double cr = in.damping_ratio * 2.0 * std::sqrt(in.rolling_inertia * kr);
-  return spring_moment - cr * wr;
+  const Vec3 wr_end = in.relative_spin_end - in.relative_spin_end.dot(in.normal) * in.normal;
+  return spring_moment - cr * wr_end;
 }
 
 }  // namespace seedcal

@@ -50,7 +50,13 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   double apex = -std::numeric_limits<double>::infinity();
   res.run.stop_reason = "max_time_s reached before the rebound apex";
   const auto max_steps = static_cast<std::uint64_t>(spec.max_time_s / opt.dt_s);
+  // Impact speed: the velocity at the end of the last step before the first touch. The velocity at
+  // the end of the first touching step already holds up to a whole step of contact force (at 10
+  // steps per contact and e = 0.01 that is 12 % of the speed), so it would understate the impact
+  // speed and overstate the restitution.
+  double vz_before_touch = 0.0;
   for (std::uint64_t s = 0; s < max_steps; ++s) {
+    vz_before_touch = run.bodies().velocity_m_s[0].z();
     if (!run.step()) {
       res.run.failure = run.failure();
       res.run.stop_reason = std::string("guard: ") + to_string(run.failure().status);
@@ -60,7 +66,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
     const int touching = run.stats().max_body_contacts;
     if (phase == Phase::falling && touching > 0) {
       phase = Phase::impact;
-      res.impact_speed_m_s = -B.velocity_m_s[0].z();
+      res.impact_speed_m_s = -vz_before_touch;
     }
     if (phase == Phase::impact) {
       res.contact_points = std::max(res.contact_points, touching);

@@ -25,7 +25,8 @@ struct FreeDropResult {
   double rebound_height_m = 0.0;   // apex of the centre of mass after the first impact, above its
                                    // height at first touch
   int contact_points = 0;          // most sphere-level contacts at once during the first impact
-  double impact_speed_m_s = 0.0;
+  double impact_speed_m_s = 0.0;   // centre-of-mass vertical speed at the end of the last step
+                                   // before the first touch
   double rebound_speed_m_s = 0.0;  // centre-of-mass vertical speed leaving the plate
   Quat orientation = Quat::Identity();
 };

@@ -73,6 +73,7 @@ double choose_time_step(const TimeStepSpec& spec, const TimeStepLimits& limits) 
                                                 ": must be in (0, 1]");
   }
   const double dt = spec.rayleigh_fraction * limits.rayleigh_s;
+  if (dt > limit && !spec.rayleigh_fraction_set && !spec.force_dt) return limit;
   if (dt > limit && !spec.force_dt) {
     std::ostringstream m;
     m << "= " << spec.rayleigh_fraction << " gives dt_s = " << dt << " s, above the stable limit: "

@@ -31,6 +31,10 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const bool clip = s.options_.contact.clip_attractive;
   const double eta_r = s.options_.contact.epsd_damping_ratio;
   BodyState& B = s.bodies_;
+  // Dashpots use the predicted end-of-step velocities, springs the half-step ones
+  // (contact/hertz_mindlin.hpp).
+  const std::vector<Vec3>& v_end = s.velocity_end_;
+  const std::vector<Vec3>& w_end = s.angular_velocity_end_;
   const SphereState& S = s.spheres_;
   const InteractionTable& table = s.table_;
   const std::size_t nb = B.size();
@@ -125,9 +129,11 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const Vec3& wi = B.angular_velocity[bi];
         const Vec3& wj = B.angular_velocity[bj];
         const Vec3 vrel = (B.velocity_m_s[bi] + wi.cross(rci)) - (B.velocity_m_s[bj] + wj.cross(rcj));
+        const Vec3 vrel_end = (v_end[bi] + w_end[bi].cross(rci)) - (v_end[bj] + w_end[bj].cross(rcj));
         const PairConstants& pc = table.pair(S.material[i], S.material[j]);
         const double mi = B.mass_kg[bi], mj = B.mass_kg[bj];
-        const ContactKinematics kin{normal, overlap, ri * rj / rs, 1.0 / (B.inv_mass[bi] + B.inv_mass[bj]), vrel};
+        const ContactKinematics kin{normal, overlap, ri * rj / rs, 1.0 / (B.inv_mass[bi] + B.inv_mass[bj]),
+                                    vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, tang[k], dt, scale, clip);
         F[bi] += cf.force_on_i_n;
         F[bj] -= cf.force_on_i_n;
@@ -139,8 +145,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         } else if constexpr (RM == RollingModel::epsd) {
           const double ii = B.principal_inertia[bi].mean() + mi * rci.squaredNorm();
           const double ij = B.principal_inertia[bj].mean() + mj * rcj.squaredNorm();
-          const EpsdInput in{normal, wi - wj, pc.rolling_friction, cf.normal_force_n,
-                             cf.normal_stiffness_n_m, kin.r_star_m, ii * ij / (ii + ij), eta_r, dt};
+          const EpsdInput in{normal, wi - wj, w_end[bi] - w_end[bj], pc.rolling_friction,
+                             cf.normal_force_n, cf.normal_stiffness_n_m, kin.r_star_m,
+                             ii * ij / (ii + ij), eta_r, dt};
           const Vec3 tau = epsd_torque(in, roll[k]);
           T[bi] += tau;
           T[bj] -= tau;
@@ -187,9 +194,11 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const std::uint32_t b = S.body[i];
         const Vec3 rc = cp - B.position_m[b];
         const Vec3& w = B.angular_velocity[b];
-        const Vec3 vrel = B.velocity_m_s[b] + w.cross(rc) - wall.velocity_at(cp);
+        const Vec3 v_wall = wall.velocity_at(cp);
+        const Vec3 vrel = B.velocity_m_s[b] + w.cross(rc) - v_wall;
+        const Vec3 vrel_end = v_end[b] + w_end[b].cross(rc) - v_wall;
         const PairConstants& pc = table.pair(S.material[i], wall.material);
-        const ContactKinematics kin{normal, overlap, r, B.mass_kg[b], vrel};
+        const ContactKinematics kin{normal, overlap, r, B.mass_kg[b], vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, wtang[k], dt, scale, clip);
         F[b] += cf.force_on_i_n;
         T[b] += rc.cross(cf.force_on_i_n);
@@ -205,7 +214,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           WT[ww[a]] -= tau;
         } else if constexpr (RM == RollingModel::epsd) {
           const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
-          const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
+          const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s,
+                             w_end[b] - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
                              cf.normal_force_n, cf.normal_stiffness_n_m, r, ib, eta_r, dt};
           const Vec3 tau = epsd_torque(in, wroll[k]);
           T[b] += tau;

@@ -132,7 +132,7 @@ void Simulation::ensure_ready() {
   update_sphere_positions();
   rebuild_lists();
   ready_ = true;
-  compute_forces();
+  compute_forces(false);
   if (reference_energy_j_ < 0.0) {
     reference_energy_j_ = energy_budget_j();
     reference_potential_j_ = potential_energy_j();
@@ -170,10 +170,31 @@ inline void lap(bool on, std::chrono::steady_clock::time_point& t0, double& acc)
 }
 }  // namespace
 
-void Simulation::compute_forces() {
+// Dashpot velocities: v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and L~_{n+1} = L_{n+1/2} + dt/2 T_n
+// (Groot & Warren 1997, eq. 17 with lambda = 1; see contact/hertz_mindlin.hpp), with F_n, T_n the
+// forces of the previous step still held by the bodies.
+void Simulation::predict_end_velocities(bool mid_step) {
+  const std::size_t nb = bodies_.size();
+  velocity_end_.resize(nb);
+  angular_velocity_end_.resize(nb);
+  const double h = mid_step ? 0.5 * options_.dt_s : 0.0;
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
+  for (std::size_t b = 0; b < nb; ++b) {
+    velocity_end_[b] = bodies_.velocity_m_s[b] + (h * bodies_.inv_mass[b]) * bodies_.force_n[b];
+    angular_velocity_end_[b] =
+        h == 0.0 ? bodies_.angular_velocity[b]
+                 : angular_velocity_from_momentum(
+                       bodies_.orientation[b], bodies_.inv_inertia[b],
+                       Vec3(bodies_.angular_momentum[b] + h * bodies_.torque_n_m[b]),
+                       bodies_.isotropic[b] != 0);
+  }
+}
+
+void Simulation::compute_forces(bool mid_step) {
   ThreadStats total;
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  predict_end_velocities(mid_step);
   run_force_kernel(*this, options_.contact.normal, options_.contact.rolling, sphere_group_touch_,
                    wall_group_touch_, total);
   lap(prof, t0, profile_.contact_s);
@@ -266,7 +287,7 @@ bool Simulation::step() {
     sort_spatially();
   if (pairs_.needs_rebuild(spheres_) || walls_moved_beyond_skin()) rebuild_lists();
   lap(prof, t0, profile_.neighbour_s);
-  compute_forces();
+  compute_forces(true);
   if (prof) t0 = std::chrono::steady_clock::now();
   // Second half kick with the new forces; the NaN guard rides along (lowest bad body reported).
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();

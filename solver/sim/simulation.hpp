@@ -100,7 +100,10 @@ class Simulation {
   friend struct ForceKernel;
   void update_sphere_positions();
   void ensure_ready();
-  void compute_forces();
+  // `mid_step`: the bodies hold half-step velocities (inside step()), so the dashpots get the
+  // predicted end-of-step velocities; false when the velocities are already at the force time.
+  void compute_forces(bool mid_step);
+  void predict_end_velocities(bool mid_step);
   bool check_guards();
   double energy_budget_j() const;
   void rebuild_lists();
@@ -120,6 +123,8 @@ class Simulation {
   std::vector<int> body_contacts_;
   std::vector<int> sphere_group_touch_, wall_group_touch_;
   std::vector<Vec3> spin_direction_;  // CDT scratch: w / |w| per body
+  // Predicted end-of-step velocity and spin per body, for the dashpots (contact/hertz_mindlin.hpp).
+  std::vector<Vec3> velocity_end_, angular_velocity_end_;
   // Per-thread force/torque accumulators, reduced in thread order (deterministic for a given
   // thread count).
   std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
