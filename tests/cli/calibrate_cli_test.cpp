@@ -149,8 +149,6 @@ TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
   std::filesystem::remove_all(dir);
 }
 
-}  // namespace
-}  // namespace seedcal::testing
 
 // Stages 6 and 7 on the impact scene: E is calibrated from the contact time, then every model
 // (here two time steps: a model is any set of overrides applied to every scene) runs the target
@@ -247,3 +245,5 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
   EXPECT_TRUE(std::filesystem::is_directory(dir + "/out/scenes/dt_2e_8/peak_force"));
   std::filesystem::remove_all(dir);
 }
+}  // namespace
+}  // namespace seedcal::testing
