@@ -9,6 +9,7 @@
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/io/atomic_file.hpp"
 #include "calibrate/study/pipeline.hpp"
+#include "reports/report.hpp"
 
 namespace seedcal {
 namespace {
@@ -102,6 +103,18 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   return j;
 }
 
+// The report (reports/, docs/reports.md): study.h5 and summary.json as report.html, report.md and
+// report/*.csv|svg. A report that cannot be written is logged and does not fail the study
+// (`seedcal report DIR` renders it again).
+void write_study_report(const std::string& out_dir, Progress& progress) {
+  try {
+    reports::render_report(out_dir);
+    progress.log("report: " + out_dir + "/report.html");
+  } catch (const std::exception& e) {
+    progress.log(std::string("report not written (seedcal report ") + out_dir + " renders it again): " + e.what());
+  }
+}
+
 }  // namespace
 
 WorkerCommand worker_command(const StudyRunOptions& o) {
@@ -176,7 +189,9 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
     progress.log("verify: chosen model " + selection["chosen"].dump() + ", " + std::to_string(ev.runs_used()) +
                  " DEM runs in all");
   }
-  return checkpoint("done");
+  const nlohmann::json summary = checkpoint("done");
+  write_study_report(o.out_dir, progress);
+  return summary;
 }
 
 }  // namespace seedcal

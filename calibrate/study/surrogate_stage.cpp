@@ -9,6 +9,11 @@
 //   later rounds the one closest to the point confirmed last.
 //   Several targets: minimise sum_t w_t (y_t(x) / T_t - 1)^2 (plus 1e-9 times the squared coded
 //   distance to the prior, which only breaks ties).
+// For the report (reports/, docs/reports.md) each fit also records its data (coded and natural
+// inputs, observed responses), the quadratic's ANOVA rows and coefficient table, both surrogates'
+// leave-one-out predictions, and each solve round a prediction grid of every target's chosen
+// surrogate over the two leading kept factors (largest first-order effect; the others at the
+// chosen point).
 #include <cmath>
 #include <limits>
 
@@ -22,6 +27,51 @@
 
 namespace seedcal {
 namespace {
+
+// A JSON number, or null when it is not finite (no NaN reaches the store's JSON).
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json rows_of(const Eigen::MatrixXd& m) {
+  nlohmann::json out = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    nlohmann::json row = nlohmann::json::array();
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row.push_back(finite_or_null(m(i, j)));
+    out.push_back(row);
+  }
+  return out;
+}
+
+nlohmann::json values_of(const Eigen::VectorXd& v) {
+  nlohmann::json out = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(finite_or_null(v(i)));
+  return out;
+}
+
+// The ANOVA table and the coefficients with their tests, as the report prints them.
+void add_regression_tables(const doe::RegressionAnalysis& a, nlohmann::json& rep) {
+  nlohmann::json anova = nlohmann::json::array();
+  for (const auto& r : a.anova)
+    anova.push_back({{"source", r.source}, {"df", r.df}, {"ss", finite_or_null(r.ss)}, {"ms", finite_or_null(r.ms)},
+                     {"f", finite_or_null(r.f)}, {"p", finite_or_null(r.p)}});
+  rep["anova"] = anova;
+  nlohmann::json coef = nlohmann::json::array();
+  for (std::size_t j = 0; j < a.terms.size(); ++j) {
+    const auto i = static_cast<Eigen::Index>(j);
+    coef.push_back({{"term", a.terms[j].name}, {"estimate", finite_or_null(a.fit.coefficients(i))},
+                    {"se", finite_or_null(a.fit.standard_errors(i))}, {"t", finite_or_null(a.fit.t(i))},
+                    {"p", finite_or_null(a.fit.p(i))}});
+  }
+  rep["coefficients"] = coef;
+  rep["adequate_precision"] = finite_or_null(a.adequate_precision);
+  // Leave-one-out prediction of run i: y_i - e_i / (1 - h_ii) (the PRESS residual; null when h_ii = 1).
+  nlohmann::json loo = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < a.fit.residuals.size(); ++i) {
+    const double h = a.fit.leverage(i);
+    loo.push_back(h < 1.0 - 1e-12 ? finite_or_null(a.fit.fitted(i) + a.fit.residuals(i) - a.fit.residuals(i) / (1.0 - h))
+                                  : nlohmann::json(nullptr));
+  }
+  rep["loo_predicted"] = loo;
+}
 
 Eigen::VectorXd box_mid(const PipelineState& st) { return 0.5 * (st.box_lo + st.box_hi); }
 Eigen::VectorXd box_half(const PipelineState& st) { return 0.5 * (st.box_hi - st.box_lo); }
@@ -52,6 +102,7 @@ TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen
                           {"pred_r2", std::isfinite(a.pred_r2) ? nlohmann::json(a.pred_r2) : nlohmann::json(nullptr)},
                           {"sigma", a.fit.sigma},
                           {"loo_rmse", std::isfinite(quad_cv) ? nlohmann::json(quad_cv) : nlohmann::json(nullptr)}};
+      add_regression_tables(a, rep["quadratic"]);
     } catch (const std::exception& e) {
       rep["quadratic"] = {{"error", e.what()}};
     }
@@ -66,6 +117,7 @@ TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen
       rep["gp"] = {{"kernel", "matern52"}, {"length_scales_coded", std::vector<double>(h.length_scales.data(), h.length_scales.data() + h.length_scales.size())},
                    {"signal_sd", std::sqrt(h.signal_variance)}, {"noise_sd", std::sqrt(h.noise_variance)},
                    {"loo_rmse", gp_cv}};
+      rep["gp"]["loo_predicted"] = values_of(y - gp->loo_residuals());
     } catch (const std::exception& e) {
       rep["gp"] = {{"error", e.what()}};
     }
@@ -77,6 +129,7 @@ TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen
   else out.surface = [quad](const Eigen::VectorXd& u) { return (*quad)(u); };
   rep["chosen"] = out.kind;
   rep["choice_rule"] = s.surrogate.model == "auto" ? "smaller leave-one-out RMSE" : "set by the study";
+  rep["data"] = {{"coded", rows_of(U)}, {"observed", values_of(y)}};
   out.report = rep;
   return out;
 }
@@ -108,6 +161,52 @@ nlohmann::json trace_curve(const doe::Surface& f, double target, const PipelineS
     }
   }
   return pts;
+}
+
+// Predictions of every target's chosen surrogate over the two leading kept factors (31 x 31 points
+// across the box; one factor: 101 points), the other kept factors at the chosen point: the
+// report's contour plot. "Leading": the largest first-order screening effects of the primary
+// target (study order when there are none).
+nlohmann::json surface_grid(const std::vector<TargetFit>& fits, const PipelineState& st, const StudyConfig& s,
+                            const std::vector<std::string>& names, const Eigen::VectorXd& chosen_u) {
+  const auto k = static_cast<int>(names.size());
+  std::vector<int> order(static_cast<std::size_t>(k));
+  for (int q = 0; q < k; ++q) order[static_cast<std::size_t>(q)] = q;
+  if (st.first_order.size() == k)
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return std::fabs(st.first_order(a)) > std::fabs(st.first_order(b)); });
+  const int a = order[0], b = k > 1 ? order[1] : -1;
+  const Eigen::VectorXd mid = box_mid(st), half = box_half(st);
+  const int n = k > 1 ? 31 : 101;
+  auto coded = [n](int i) { return -1.0 + 2.0 * i / (n - 1); };
+  nlohmann::json g = {{"factors", b >= 0 ? nlohmann::json({names[static_cast<std::size_t>(a)], names[static_cast<std::size_t>(b)]})
+                                         : nlohmann::json({names[static_cast<std::size_t>(a)]})}};
+  nlohmann::json xs = nlohmann::json::array(), ys = nlohmann::json::array(), held = nlohmann::json::object();
+  for (int i = 0; i < n; ++i) xs.push_back(mid(a) + half(a) * coded(i));
+  if (b >= 0)
+    for (int i = 0; i < n; ++i) ys.push_back(mid(b) + half(b) * coded(i));
+  for (int q = 0; q < k; ++q)
+    if (q != a && q != b) held[names[static_cast<std::size_t>(q)]] = mid(q) + half(q) * chosen_u(q);
+  g["x"] = xs;
+  if (b >= 0) g["y"] = ys;
+  g["held"] = held;
+  g["targets"] = nlohmann::json::array();
+  for (std::size_t t = 0; t < fits.size(); ++t) {
+    Eigen::VectorXd u = chosen_u;
+    nlohmann::json z = nlohmann::json::array();
+    for (int j = 0; j < (b >= 0 ? n : 1); ++j) {
+      if (b >= 0) u(b) = coded(j);
+      nlohmann::json row = nlohmann::json::array();
+      for (int i = 0; i < n; ++i) {
+        u(a) = coded(i);
+        row.push_back(finite_or_null(fits[t].surface(u)));
+      }
+      if (b >= 0) z.push_back(row);
+      else z = row;
+    }
+    g["targets"].push_back({{"name", s.targets[t].name}, {"target", s.targets[t].value}, {"surrogate", fits[t].kind}, {"z", z}});
+  }
+  return g;
 }
 
 }  // namespace
@@ -182,6 +281,12 @@ nlohmann::json run_surrogate_design(StudyEvaluator& ev, PipelineState& st, Study
   const Eigen::MatrixXd y = mean_responses(s, records, static_cast<int>(coded.rows()), s.surrogate.replicates);
   nlohmann::json report = {{"design", name}, {"runs", coded.rows()}, {"replicates", s.surrogate.replicates},
                            {"natural", natural}};
+  std::vector<std::string> factor_names, target_names;
+  for (int j : st.kept) factor_names.push_back(s.parameters[static_cast<std::size_t>(j)].path);
+  for (const auto& t : s.targets) target_names.push_back(t.name);
+  report["factors"] = factor_names;
+  report["targets"] = target_names;
+  report["coded"] = rows_of(coded);
   report["responses"] = nlohmann::json::array();
   for (Eigen::Index t = 0; t < y.cols(); ++t) {
     nlohmann::json col = nlohmann::json::array();
@@ -207,6 +312,9 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
     fits.push_back(fit_target(s, U, y, names));
     nlohmann::json fr = fits.back().report;
     fr["name"] = s.targets[t].name;
+    Eigen::MatrixXd natural(U.rows(), U.cols());
+    for (Eigen::Index i = 0; i < U.rows(); ++i) natural.row(i) = box_point(st, U.row(i).transpose()).transpose();
+    fr["data"]["natural"] = rows_of(natural);
     report["targets"].push_back(fr);
   }
   st.surrogate_kind = fits[static_cast<std::size_t>(primary_target(s))].kind;
@@ -276,6 +384,7 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
   for (std::size_t t = 0; t < s.targets.size(); ++t) predicted[s.targets[t].name] = fits[t].surface(chosen_u);
   solution["predicted"] = predicted;
   report["solution"] = solution;
+  report["surface_grid"] = surface_grid(fits, st, s, names, chosen_u);
   st.solution = solution;
   store.set_stage(label, report);
   return report;

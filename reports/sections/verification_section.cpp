@@ -1,0 +1,116 @@
+// Verification of the calibrated model against the tests it was not fitted to (piling, bulk
+// density, drum...: simulated mean and sd against the experiment), and the choice among clump
+// models: accuracy (mean |relative error|) against CPU seconds, with the Pareto front.
+#include <algorithm>
+#include <cmath>
+
+#include "reports/sections/common.hpp"
+#include "reports/sections/sections.hpp"
+
+namespace seedcal::reports {
+namespace {
+
+// One verification table row of a test result.
+std::vector<std::string> test_row(const nlohmann::json& x) {
+  const bool sim_only = !x.contains("experimental_mean") || x["experimental_mean"].is_null();
+  return {x.value("test", std::string("?")), x.value("label", x.value("test", std::string("?"))), x.value("metric", std::string("")),
+          format_value(x.value("mean", nlohmann::json())), format_value(x.value("sd", nlohmann::json())),
+          format_value(x.value("n", nlohmann::json())),
+          sim_only ? "simulation only" : format_value(x["experimental_mean"]),
+          sim_only ? "simulation only" : format_value(x.value("experimental_sd", nlohmann::json())),
+          sim_only ? "simulation only" : format_percent(x.value("rel_error", nlohmann::json())),
+          sim_only || x.value("within_sd", nlohmann::json()).is_null() ? "simulation only" : format_value(x["within_sd"]),
+          format_value(x.value("cpu_seconds", nlohmann::json()))};
+}
+
+const std::vector<std::string> kTestColumns = {"test", "label", "metric", "mean", "sd", "n", "experimental mean", "experimental sd",
+                                               "relative error", "within experimental sd", "CPU seconds"};
+
+void add_verification(const nlohmann::json& v, Document& doc) {
+  Section s{"verification", "Verification", {}};
+  if (v.contains("model")) s.paragraph("Model verified: " + format_value(v["model"]) + ".");
+  Table t{"verification", "Verification tests: simulation against experiment", kTestColumns, {}, {}};
+  for (const auto& x : member(v, "tests")) t.add_row(test_row(x));
+  t.notes.push_back("Relative error = simulated mean / experimental mean - 1; \"simulation only\": the study gives no experimental value.");
+  s.table(std::move(t));
+  doc.sections.push_back(std::move(s));
+}
+
+void add_selection(const nlohmann::json& m, Document& doc) {
+  Section s{"model-selection", "Model selection", {}};
+  s.paragraph("Chosen: " + format_value(m.value("chosen", nlohmann::json())) + ". Rule: " + format_value(m.value("rule", nlohmann::json())) + ".");
+  if (m.contains("note")) s.note(format_value(m["note"]));
+  const std::string chosen = m.value("chosen", std::string());
+  const auto& models = member(m, "models");
+  bool any_score = false, any_calibrated = false;
+  for (const auto& x : models) {
+    any_score = any_score || x.contains("score");
+    any_calibrated = any_calibrated || !member(x, "calibrated").empty();
+  }
+  Table t{"model_selection", "Clump models: accuracy against cost",
+          {"model", "settings", "spheres", "mean |relative error|", "within experimental sd", "CPU seconds",
+           any_score ? "score" : "accuracy per CPU second", "Pareto optimal", "chosen"}, {}, {}};
+  if (any_calibrated) t.columns.push_back("calibrated values");
+  Table by_model{"verification_by_model", "Verification tests of every model", {"model"}, {}, {}};
+  by_model.columns.insert(by_model.columns.end(), kTestColumns.begin(), kTestColumns.end());
+  struct Point { double cpu, err; bool pareto; std::string model; };
+  std::vector<Point> pts;
+  for (const auto& x : models) {
+    const std::string model = x.value("model", std::string("?"));
+    std::vector<std::string> row{model, format_value(x.value("set", nlohmann::json(""))), format_value(x.value("spheres", nlohmann::json())),
+                                 format_percent(x.value("mean_abs_rel_error", nlohmann::json())),
+                                 x.contains("tests_with_sd") ? format_value(x.value("within_sd", nlohmann::json())) + " of " +
+                                                                   format_value(x["tests_with_sd"])
+                                                             : "n/a",
+                                 format_value(x.value("cpu_seconds", nlohmann::json())),
+                                 format_value(x.value(any_score ? "score" : "accuracy_per_cpu_second", nlohmann::json())),
+                                 format_value(x.value("pareto", nlohmann::json())), model == chosen ? "yes" : "no"};
+    if (any_calibrated) {
+      std::string cal;
+      for (const auto& [k, v] : member(x, "calibrated").items()) cal += std::string(cal.empty() ? "" : ", ") + k + " = " + format_value(v);
+      row.push_back(cal);
+    }
+    t.add_row(std::move(row));
+    for (const auto& test : member(x, "tests")) {
+      auto r = test_row(test);
+      r.insert(r.begin(), model);
+      by_model.add_row(std::move(r));
+    }
+    pts.push_back({as_number(x.value("cpu_seconds", nlohmann::json())), 100.0 * std::fabs(as_number(x.value("mean_abs_rel_error", nlohmann::json()))),
+                   x.value("pareto", false), model});
+  }
+  s.table(std::move(t));
+  if (!by_model.rows.empty()) s.table(std::move(by_model));
+  std::string all, front, pick;
+  std::vector<Point> sorted = pts;
+  std::sort(sorted.begin(), sorted.end(), [](const Point& a, const Point& b) { return a.cpu < b.cpu; });
+  for (const auto& p : sorted) {
+    if (!std::isfinite(p.cpu) || !std::isfinite(p.err)) continue;
+    const std::string line = gp_number(p.cpu) + " " + gp_number(p.err) + " " + gp_data_string(p.model) + "\n";
+    all += line;
+    if (p.pareto) front += line;
+    if (p.model == chosen) pick += line;
+  }
+  if (!all.empty()) {
+    GnuplotPlot p;
+    p.data = {{"all.dat", all}, {"front.dat", front}, {"chosen.dat", pick}};
+    p.script = "set title 'Clump models: mean |relative error| against CPU seconds'\nset xlabel 'CPU seconds (calibration and verification runs)'\n"
+               "set ylabel 'mean |relative error| (%)'\nset grid\nset offsets graph 0.08, graph 0.12, graph 0.12, graph 0.08\n"
+               "set key outside right top vertical\n"
+               "plot 'front.dat' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'Pareto front', "
+               "'all.dat' using 1:2 with points pt 7 ps 1.3 lc rgb '#555555' title 'models', "
+               "'all.dat' using 1:2:3 with labels offset 0,1.2 notitle, "
+               "'chosen.dat' using 1:2 with points pt 6 ps 3 lw 2.5 lc rgb '#ff7f0e' title 'chosen'\n";
+    add_plot(s, "model_selection_pareto", "Model selection: accuracy against cost, the Pareto front and the chosen model", p);
+  }
+  doc.sections.push_back(std::move(s));
+}
+
+}  // namespace
+
+void add_verification_sections(const StudyData& d, Document& doc) {
+  if (d.summary.contains("verification") && d.summary["verification"].is_object()) add_verification(d.summary["verification"], doc);
+  if (d.summary.contains("model_selection") && d.summary["model_selection"].is_object()) add_selection(d.summary["model_selection"], doc);
+}
+
+}  // namespace seedcal::reports
