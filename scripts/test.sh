@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite, in stages. Expects scripts/setup.sh to have built build/ (the README's
 # test command builds it with --preset ci: Release, warnings as errors).
-#   1. Release suite: every ctest test (unit, physics, regression, cli).
+#   0. Chromium (headless) for the report's browser test.
+#   1. Release suite: every ctest test (unit, physics, regression, cli, browser).
 #   2. ASan + UBSan build (clang) of the same suite (tests labelled `slow` left out to stay in budget).
 #   3. The libFuzzer targets of that build (STL, study and clump readers), 60 s each.
 # Set SEEDCAL_SKIP_SANITIZE=1 to run stage 1 only (local iteration), SEEDCAL_FUZZ_SECONDS=N to
@@ -11,6 +12,11 @@ cd "$(dirname "$0")/.."
 source scripts/lib/packages.sh
 jobs=$(nproc)
 start=$(date +%s)
+
+# The report's browser test (reports_browser_test, label `browser`) loads report.html in headless
+# Chromium and skips without it: 24 packages, 122 MB, about 35 s to install (docs/reports.md).
+echo "== stage 0: headless Chromium for the report's browser test =="
+ensure_packages chromium
 
 echo "== stage 1: Release test suite =="
 ctest --test-dir build --output-on-failure -j "$jobs"
