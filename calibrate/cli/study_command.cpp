@@ -1,14 +1,89 @@
-// `seedcal study`: see DESIGN.md ("Interface").
+// `seedcal study multicontact|stiffness|moisture --out DIR`: the paper's section 4 studies
+// (calibrate/studies/paper_studies.hpp, docs/studies.md). Writes DIR/KIND.json (with seed,
+// options and version) and DIR/KIND.csv; prints the JSON.
+#include <filesystem>
+#include <iostream>
+
 #include "calibrate/cli/commands.hpp"
 #include "calibrate/cli/errors.hpp"
+#include "calibrate/io/atomic_file.hpp"
+#include "calibrate/studies/paper_studies.hpp"
 
 namespace seedcal {
+namespace {
+
+struct StudyArgs {
+  PaperStudyOptions o;
+  std::string out = "out/study";
+  std::string variety = "jinong1";
+  bool drum = false;
+};
+
+void finish(const std::string& kind, nlohmann::json j, const StudyArgs& a, const GlobalOptions& g) {
+  j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", a.o.threads},
+                     {"variety", a.variety}};
+  std::filesystem::create_directories(a.out);
+  write_json_atomic(a.out + "/" + kind + ".json", j);
+  write_file_atomic(a.out + "/" + kind + ".csv", study_csv(j));
+  std::cout << j.dump(2) << "\n";
+}
+
+void check_file(const std::string& option, const std::string& path) {
+  if (!std::filesystem::exists(path)) throw InputError(option + " = " + path + ": no such file");
+}
+
+void add_dem_options(CLI::App* sub, StudyArgs& a) {
+  sub->add_option("--free-drop", a.o.free_drop_scene, "free_drop scene file")->capture_default_str();
+  sub->add_option("--set", a.o.sets, "override for every scene: key=value (e.g. particle.clump_file=...)");
+  sub->add_option("--repeats", a.o.repeats, "free-drop repeats (seeds)")->check(CLI::Range(1, 1000))->capture_default_str();
+  sub->add_option("--out", a.out, "output directory")->capture_default_str();
+}
+
+}  // namespace
 
 void add_study_command(CLI::App& app, GlobalOptions& g) {
-  CLI::App* sub = app.add_subcommand("study", "(study: not available in this build yet)");
-  add_common_options(*sub, g);
-  sub->allow_extras();
-  sub->callback([] { throw RunFailed("'seedcal study' is not available in this build yet"); });
+  auto a = std::make_shared<StudyArgs>();
+  a->o.free_drop_scene = "data/scenes/jinong1/free_drop.toml";
+  a->o.drum_scene = "data/scenes/jinong1/drum.toml";
+  // The paper's section 4 model: Jinong 1, automatic filling at smoothness 2 (188 spheres in EDEM).
+  a->o.sets = {"particle.clump_file=../../clumps/jinong1-auto-s2.toml"};
+  CLI::App* sub = app.add_subcommand("study", "the paper's section 4 studies: multicontact, stiffness, moisture");
+  sub->require_subcommand(1);
+
+  CLI::App* mc = sub->add_subcommand("multicontact", "HM vs HMNR: free drop (10 repeats) and, with --drum, the drum at 5 rpm");
+  add_dem_options(mc, *a);
+  mc->add_flag("--drum", a->drum, "also run the drum scene under both models (long: minutes to hours)");
+  mc->add_option("--drum-scene", a->o.drum_scene, "drum scene file")->capture_default_str();
+  mc->add_option("--drum-repeats", a->o.drum_repeats, "drum runs per model")->check(CLI::Range(1, 100))->capture_default_str();
+  add_common_options(*mc, g);
+  mc->callback([a, &g] {
+    a->o.threads = g.resolved_threads();
+    a->o.seed = g.seed;
+    a->o.out_dir = a->out;
+    check_file("--free-drop", a->o.free_drop_scene);
+    if (!a->drum) a->o.drum_scene.clear();
+    else check_file("--drum-scene", a->o.drum_scene);
+    finish("multicontact", multicontact_study(a->o), *a, g);
+  });
+
+  CLI::App* st = sub->add_subcommand("stiffness", "free drop under HMNR at several Young's moduli: contact points and rebound");
+  add_dem_options(st, *a);
+  st->add_option("--youngs-modulus-pa", a->o.youngs_moduli_pa, "seed Young's moduli, Pa")
+      ->check(CLI::Range(1e3, 1e12))->capture_default_str();
+  add_common_options(*st, g);
+  st->callback([a, &g] {
+    a->o.threads = g.resolved_threads();
+    a->o.seed = g.seed;
+    a->o.out_dir = a->out;
+    check_file("--free-drop", a->o.free_drop_scene);
+    finish("stiffness", stiffness_study(a->o), *a, g);
+  });
+
+  CLI::App* mo = sub->add_subcommand("moisture", "Young's modulus against moisture and the dimensions after soaking");
+  mo->add_option("--variety", a->variety, "variety name (data/varieties/NAME.toml) or file")->capture_default_str();
+  mo->add_option("--out", a->out, "output directory")->capture_default_str();
+  add_common_options(*mo, g);
+  mo->callback([a, &g] { finish("moisture", moisture_study(a->variety), *a, g); });
 }
 
 }  // namespace seedcal
