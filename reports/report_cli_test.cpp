@@ -48,7 +48,7 @@ TEST(ReportCli, StudyWritesTheReportAndReportRendersItAgain) {
   }
   EXPECT_EQ(count(html, "<svg"), count(html, "<figure id=\"plot-"));
   EXPECT_EQ(html.find("<script"), std::string::npos);
-  EXPECT_EQ(html.find("needs a newer study store"), std::string::npos);  // this store has everything
+  EXPECT_EQ(html.find("Needs a newer study store"), std::string::npos);  // this store has everything
   // The contour plot shows the traced solution curve (two unknowns, one target) and the ANOVA rows.
   EXPECT_NE(read_text(out + "/report/surface_contour.svg").find("traced solution curve"), std::string::npos);
   for (const char* csv : {"study", "parameters", "targets", "screening_design", "effects", "surface_design", "fit_statistics", "anova",

@@ -181,7 +181,7 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
   const std::string html = slurp(dir / "report.html"), md = slurp(dir / "report.md");
   EXPECT_NE(html.find("simulation only"), std::string::npos);
   EXPECT_NE(html.find("drum 5 rpm"), std::string::npos);
-  EXPECT_NE(html.find("needs a newer study store"), std::string::npos);
+  EXPECT_NE(html.find("Needs a newer study store"), std::string::npos);
   EXPECT_NE(md.find("(scenes/piling/side_view.svg)"), std::string::npos) << md;
   for (const char* f : {"verification.csv", "model_selection.csv", "summary.csv", "calibrated_values.csv", "confirmed.csv", "fit_statistics.csv"})
     EXPECT_TRUE(fs::exists(dir / "report" / f)) << f;
@@ -195,6 +195,34 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
   std::ofstream(dir / "report" / "stale.csv") << "x\n";
   write_report(doc, dir.string());
   EXPECT_FALSE(fs::exists(dir / "report" / "stale.csv"));
+  fs::remove_all(dir);
+}
+
+// One kept factor: the surface is drawn as a curve against it, with the runs, the target and the
+// chosen value; the leave-one-out plot and table come from the fit's data.
+TEST(Report, OneFactorSurfaceIsAProfile) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot is not installed";
+  const fs::path dir = fs::temp_directory_path() / ("seedcal-report-profile-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  StudyData d;
+  d.dir = dir.string();
+  d.has_store = true;
+  d.stages["solve_round_1"] = nlohmann::json::parse(R"({
+    "factors": ["e"], "label": "solve_round_1",
+    "solution": {"chosen": {"e": 2.0}, "found": true, "predicted": {"t": 4.0}, "surrogate": "quadratic"},
+    "targets": [{"name": "t", "points": 3, "chosen": "quadratic", "choice_rule": "smaller leave-one-out RMSE",
+                 "data": {"coded": [[-1], [0], [1]], "natural": [[1], [2], [3]], "observed": [1.0, 4.1, 8.9]},
+                 "gp": {"loo_rmse": 1.0, "loo_predicted": [2.0, 4.5, 7.0]},
+                 "quadratic": {"loo_rmse": 0.5, "loo_predicted": [1.2, null, 8.0]}}],
+    "surface_grid": {"factors": ["e"], "x": [1, 2, 3], "held": {},
+                     "targets": [{"name": "t", "target": 4.0, "surrogate": "quadratic", "z": [1.0, 4.0, 9.0]}]}})");
+  const Document doc = build_report(d);
+  const auto files = write_report(doc, dir.string());
+  for (const char* f : {"surface_profile.svg", "gp_loo.svg", "loo_predictions.csv"}) EXPECT_TRUE(fs::exists(dir / "report" / f)) << f;
+  const std::string loo = slurp(dir / "report" / "loo_predictions.csv");
+  EXPECT_NE(loo.find("2,2,4.1,4.5,n/a"), std::string::npos) << loo;  // run, e, observed, GP, quadratic
+  for (const auto& f : files) EXPECT_FALSE(has_nan(slurp(f))) << f;
   fs::remove_all(dir);
 }
 

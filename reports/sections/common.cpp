@@ -15,8 +15,9 @@ void add_plot(Section& section, const std::string& id, const std::string& captio
 }
 
 std::string needs_newer_store(const std::string& what) {
-  return what + " needs a newer study store: this one was written by a seedcal that did not record it "
-                "(run the study again with this version, or resume it, to add it)";
+  return "Needs a newer study store: " + what +
+         " (this store was written by a seedcal that did not record it; resume the study with --resume, or run it again, "
+         "to add it)";
 }
 
 std::vector<std::string> strings_of(const nlohmann::json& array) {

@@ -79,8 +79,8 @@ void add_inputs_section(const StudyData& d, Document& doc) {
   row("config hash", d.has_store ? d.header.config_hash : prov.value("config_hash", std::string()));
   row("store created (UTC)", d.header.created_utc);
   const auto* confirm = d.stage("confirm");
-  if (d.summary.contains("tolerance")) row("tolerance (relative error)", format_percent(d.summary["tolerance"]));
-  else if (confirm && confirm->contains("tolerance")) row("tolerance (relative error)", format_percent((*confirm)["tolerance"]));
+  const nlohmann::json& tol = d.summary.contains("tolerance") ? d.summary["tolerance"] : confirm ? member(*confirm, "tolerance") : member(d.summary, "");
+  if (tol.is_number()) row("tolerance (relative error)", format_number(100.0 * tol.get<double>()) + " %");
   if (confirm && confirm->contains("budget")) row("budget of DEM runs", format_value((*confirm)["budget"]));
   if (const auto* screen = d.stage("screen"); screen && screen->contains("alpha"))
     row("screening significance level", format_value((*screen)["alpha"]));

@@ -30,7 +30,7 @@ void add_summary_section(const StudyData& d, Document& doc) {
   row("  calibration", "calibration_cpu_seconds");
   row("  verification", "verification_cpu_seconds");
   row("wall seconds (all sessions)", "wall_seconds");
-  if (j.contains("tolerance")) run.add_row({"tolerance", format_percent(j["tolerance"])});
+  if (j.contains("tolerance") && j["tolerance"].is_number()) run.add_row({"tolerance", format_number(100.0 * j["tolerance"].get<double>()) + " %"});
   s.table(std::move(run));
 
   Table cal{"calibrated_values", "Parameter values", {"parameter", "value", "role"}, {}, {}};

@@ -69,7 +69,7 @@ void contour_plot(const nlohmann::json& grid, const nlohmann::json& tg, const nl
   for (const auto& [f, v] : member(grid, "held").items()) held += std::string(held.empty() ? "" : ", ") + f + " = " + format_value(v);
   p.script = "set title " + gp_quote(name + ": " + tg.value("surrogate", std::string("surrogate")) + " surface" +
                                      (held.empty() ? std::string() : " (" + held + ")")) +
-             "\nset xlabel " + gp_quote(gf[0]) + "\nset ylabel " + gp_quote(gf[1]) + "\nset cblabel " + gp_quote(name) +
+             "\nset xlabel " + gp_quote(gf[0]) + "\nset ylabel " + gp_quote(gf[1]) + "\nset cblabel " + gp_quote(name) + " offset 1.5,0" +
              "\nset xrange [" + gp_number(as_number(xs.front())) + ":" + gp_number(as_number(xs.back())) + "]\nset yrange [" +
              gp_number(as_number(ys.front())) + ":" + gp_number(as_number(ys.back())) + "]\n" +
              "set palette cubehelix start 0.5 cycles -1.2 saturation 1.0\nset view map\nunset surface\nset contour base\n"
@@ -128,7 +128,7 @@ void loo_section(const StudyData& d, const nlohmann::json& st, int round, Docume
     const auto& t = targets[ti];
     const std::string name = t.value("name", std::string("?")), suffix = target_suffix(names, ti);
     if (!t.contains("data")) {
-      s.note(needs_newer_store("The leave-one-out predictions of " + name));
+      s.note(needs_newer_store("the leave-one-out predictions of " + name));
       continue;
     }
     const auto& obs = t["data"].value("observed", nlohmann::json::array());
@@ -184,7 +184,7 @@ void add_surface_plot_sections(const StudyData& d, Document& doc) {
   const auto names = target_names(d);
   const auto& solution = st.value("solution", nlohmann::json::object());
   if (!st.contains("surface_grid")) {
-    s.note(needs_newer_store("The contour plot (a prediction grid of the surrogate)"));
+    s.note(needs_newer_store("the contour plot (a prediction grid of the surrogate)"));
   } else {
     const auto& grid = st["surface_grid"];
     const auto gf = strings_of(grid.value("factors", nlohmann::json::array()));

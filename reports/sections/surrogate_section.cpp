@@ -41,7 +41,7 @@ void add_design(const StudyData& d, Document& doc) {
     for (const auto& col : responses) row.push_back(i < col.size() ? format_value(col[i]) : "n/a");
     t.add_row(std::move(row));
   }
-  if (coded.empty()) t.notes.push_back(needs_newer_store("The coded settings"));
+  if (coded.empty()) t.notes.push_back(needs_newer_store("the coded settings"));
   s.table(std::move(t));
   doc.sections.push_back(std::move(s));
 }
@@ -99,7 +99,7 @@ void add_fit(const StudyData& d, Document& doc) {
                         format_value(q.value("adequate_precision", nlohmann::json())) + ".");
       s.table(std::move(a));
     } else if (!q.empty() && !q.contains("error")) {
-      s.note(needs_newer_store("The ANOVA table of " + name));
+      s.note(needs_newer_store("the ANOVA table of " + name));
     }
     if (q.contains("coefficients")) {
       Table c{"coefficients" + suffix, "Quadratic model of " + name + " in box-coded units (-1 .. 1 per factor)",
