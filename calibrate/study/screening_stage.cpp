@@ -3,6 +3,7 @@
 // dummy columns (or, when a run failed, from the residual of the first-order model on the runs
 // that finished). Kept: every parameter the study calibrates, plus every one significant at
 // `alpha` for some target.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -142,11 +143,18 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
     mean /= n;
     for (int j = 0; j < np; ++j) {
       const auto& e = a.effects[static_cast<std::size_t>(j)];
-      const bool significant = std::isfinite(e.p) && e.p < s.screen.alpha;
+      // A noise-free response (a deterministic scene: the dummy columns show no error at all)
+      // has se = 0 and no t test: there every effect above round-off is real.
+      const bool exact = !(e.se > 0.0) && std::isfinite(e.effect);
+      const bool significant = exact ? std::fabs(e.effect) > 1e-9 * std::max(std::fabs(mean), 1e-300)
+                                     : std::isfinite(e.p) && e.p < s.screen.alpha;
       if (significant) keep[static_cast<std::size_t>(j)] = true;
-      tj["effects"].push_back({{"factor", e.name}, {"effect", e.effect}, {"se", e.se}, {"t", e.t},
-                               {"p", std::isfinite(e.p) ? nlohmann::json(e.p) : nlohmann::json(nullptr)},
-                               {"significant", significant}});
+      nlohmann::json ej = {{"factor", e.name}, {"effect", e.effect}, {"se", std::isfinite(e.se) ? nlohmann::json(e.se) : nlohmann::json(nullptr)},
+                           {"t", std::isfinite(e.t) ? nlohmann::json(e.t) : nlohmann::json(nullptr)},
+                           {"p", std::isfinite(e.p) ? nlohmann::json(e.p) : nlohmann::json(nullptr)},
+                           {"significant", significant}};
+      if (exact) ej["note"] = "no error estimate (the response has no noise): significant when not zero";
+      tj["effects"].push_back(ej);
     }
     tj["mean"] = mean;
     if (static_cast<int>(t) == primary) {

@@ -245,5 +245,28 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
   EXPECT_TRUE(std::filesystem::is_directory(dir + "/out/scenes/dt_2e_8/peak_force"));
   std::filesystem::remove_all(dir);
 }
+// One parameter of a deterministic scene: the Plackett-Burman dummy columns carry no error at
+// all (se = 0), so the effect has no t test; it is kept as exact, and nothing non-finite reaches
+// summary.json.
+TEST(CalibrateCli, OneParameterNoiseFreeScreening) {
+  const std::string dir = scratch_dir("calibrate-single");
+  const double e0 = 3.3e10;
+  const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
+  write_text(dir + "/study.toml", "name = \"single\"\n" + target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+                                      "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 2.0e10\n"
+                                      "high = 6.0e10\ncalibrate = true\n\n[screen]\nruns = 8\n\n[confirm]\n"
+                                      "replicates = 2\ntolerance = 0.003\nmax_evaluations = 40\n");
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string text = read_text(dir + "/out/summary.json");
+  EXPECT_EQ(text.find("NaN"), std::string::npos);
+  const auto s = nlohmann::json::parse(text);
+  EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
+  EXPECT_NEAR(s["calibrated"]["materials.glass.youngs_modulus_pa"].get<double>() / e0, 1.0, 0.012) << s.dump(1);
+  const auto& effect = s["stages"]["screen"]["effects"]["contact_duration_s"][0];
+  EXPECT_TRUE(effect["significant"].get<bool>()) << effect.dump();
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace seedcal::testing
