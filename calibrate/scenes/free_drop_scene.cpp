@@ -37,6 +37,7 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   j["impact_speed_m_s"] = r.impact_speed_m_s;
   j["rebound_speed_m_s"] = r.rebound_speed_m_s;
   j["restitution_com"] = r.impact_speed_m_s > 0 ? r.rebound_speed_m_s / r.impact_speed_m_s : 0.0;
+  j["max_energy_ratio"] = r.max_energy_ratio;
   j["orientation_quat"] = {r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z()};
   j["particle"] = particle.description;
   add_run_report(j, r.run);

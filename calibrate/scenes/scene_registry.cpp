@@ -1,6 +1,8 @@
 #include "calibrate/scenes/scene_registry.hpp"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace seedcal {
 
@@ -36,6 +38,38 @@ void add_run_report(nlohmann::json& j, const RunReport& r) {
 }  // namespace seedcal
 
 namespace seedcal {
+namespace {
+
+// Removes every non-finite number from a run's metrics (a run a guard stopped may end with NaN
+// positions): an array holding one loses the whole array, an object the key. The removed paths
+// are listed under "non_finite_removed", so no NaN (written as null by nlohmann::json) reaches
+// metrics.json or the study store, and nothing is silently lost.
+bool finite_or_remove(nlohmann::json& j, const std::string& path, std::vector<std::string>& removed) {
+  if (j.is_number_float()) return std::isfinite(j.get<double>());
+  if (j.is_array()) {
+    for (std::size_t i = 0; i < j.size(); ++i)
+      if (!finite_or_remove(j[i], path + "[" + std::to_string(i) + "]", removed)) return false;
+    return true;
+  }
+  if (j.is_object()) {
+    std::vector<std::string> bad;
+    for (auto& [k, v] : j.items())
+      if (!finite_or_remove(v, path.empty() ? k : path + "." + k, removed)) bad.push_back(k);
+    for (const std::string& k : bad) {
+      j.erase(k);
+      removed.push_back(path.empty() ? k : path + "." + k);
+    }
+  }
+  return true;
+}
+
+void remove_non_finite(nlohmann::json& j) {
+  std::vector<std::string> removed;
+  finite_or_remove(j, "", removed);
+  if (!removed.empty()) j["non_finite_removed"] = removed;
+}
+
+}  // namespace
 
 nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
                             const std::string& config_path, const SceneContext& ctx, int repeats) {
@@ -48,6 +82,7 @@ nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
     SceneContext c = ctx;
     c.seed = ctx.seed + static_cast<std::uint64_t>(k);
     runs.push_back(runner(root, c));
+    remove_non_finite(runs.back());
     runs.back()["seed"] = c.seed;
     if (runs.back().value("status", "ok") != "ok") break;  // a failed run ends the series
   }

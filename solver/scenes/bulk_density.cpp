@@ -17,6 +17,11 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   const double g = spec.physics.gravity_m_s2.norm();
   const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds,
                                    std::sqrt(2.0 * g * (c.z() + collar)));
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  const double pour_kg = spec.overfill * c.x() * c.y() * c.z() * rho * 0.62;
+  check_pour_memory(spec.physics, spec.seeds, pour_kg, spec.threads, "container_m",
+                    describe_rig({{"container_m x", c.x()}, {"y", c.y()}, {"z", c.z()},
+                                  {"overfill", spec.overfill}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
                  seed_options(spec.physics, dt, spec.threads, spec.seed));
   Wall box;
@@ -25,11 +30,10 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   box.material = spec.wall_material;
   sim.add_wall(box);
 
-  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
   FactorySpec fs;
   fs.body = spec.seeds.body;
   fs.scale = spec.seeds.scale;
-  fs.total_mass_kg = spec.overfill * c.x() * c.y() * c.z() * rho * 0.62;
+  fs.total_mass_kg = pour_kg;
   // Pour in layers: each batch fills the collar region, then settles a little before the next.
   fs.region.lo_m = Vec3(0.0, 0.0, 0.3 * c.z());
   fs.region.hi_m = Vec3(c.x(), c.y(), c.z() + collar);

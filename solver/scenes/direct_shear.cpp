@@ -20,6 +20,10 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   const double area = std::numbers::pi * R * R;
   const double g = spec.physics.gravity_m_s2.norm();
   const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * (H + guide)));
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  check_pour_memory(spec.physics, spec.seeds, area * H * rho * 0.62, spec.threads, "diameter_m",
+                    describe_rig({{"diameter_m", spec.diameter_m},
+                                  {"sample_height_m", spec.sample_height_m}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
                  seed_options(spec.physics, dt, spec.threads, spec.seed));
 
@@ -38,7 +42,6 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
 
   // Pour: enough seeds to fill the sample at a solid fraction of 0.62 (more than any loose random
   // packing reaches), in batches from the guide.
-  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
   FactorySpec fs;
   fs.body = spec.seeds.body;
   fs.scale = spec.seeds.scale;

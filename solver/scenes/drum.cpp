@@ -32,6 +32,11 @@ DrumResult run_drum(const DrumSpec& spec) {
   res.froude_number = w * w * R / g;
   res.fill_height_m = drum_fill_height(R, spec.filling_rate);
   const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * R) + w * R);
+  const double mass = spec.filling_rate * std::numbers::pi * R * R * D * spec.bulk_density_kg_m3;
+  check_pour_memory(spec.physics, spec.seeds, mass, spec.threads, "diameter_m",
+                    describe_rig({{"diameter_m", spec.diameter_m},
+                                  {"depth_m", spec.depth_m},
+                                  {"filling_rate", spec.filling_rate}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
                  seed_options(spec.physics, dt, spec.threads, spec.seed));
   // The drum: a closed cylinder whose axis (its frame's z) is the world y axis, centred on the
@@ -44,7 +49,6 @@ DrumResult run_drum(const DrumSpec& spec) {
   drum.pose.origin_m = Vec3(0.0, -0.5 * D, 0.0);
   const std::size_t drum_index = sim.add_wall(drum);
 
-  const double mass = spec.filling_rate * std::numbers::pi * R * R * D * spec.bulk_density_kg_m3;
   FactorySpec fs;
   fs.body = spec.seeds.body;
   fs.scale = spec.seeds.scale;

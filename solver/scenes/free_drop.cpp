@@ -55,6 +55,11 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   // steps per contact and e = 0.01 that is 12 % of the speed), so it would understate the impact
   // speed and overstate the restitution.
   double vz_before_touch = 0.0;
+  const double e_release = b.mass_kg * g * spec.drop_height_m;
+  // At rest: kinetic energy below 1e-6 of the release energy (1e-3 of the impact speed) for 10 ms,
+  // a hundred contact times of a seed on steel.
+  constexpr double kRestEnergyRatio = 1e-6, kRestTime_s = 0.01;
+  double rest_since_s = -1.0;
   for (std::uint64_t s = 0; s < max_steps; ++s) {
     vz_before_touch = run.bodies().velocity_m_s[0].z();
     if (!run.step()) {
@@ -63,6 +68,9 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
       break;
     }
     const auto& B = run.bodies();
+    const double ke = run.kinetic_energy_j();
+    const double e_now = ke + B.mass_kg[0] * g * (B.position_m[0].z() - com_at_touch);
+    if (e_release > 0.0) res.max_energy_ratio = std::max(res.max_energy_ratio, e_now / e_release);
     const int touching = run.stats().max_body_contacts;
     if (phase == Phase::falling && touching > 0) {
       phase = Phase::impact;
@@ -73,6 +81,17 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
       if (touching == 0) {
         phase = Phase::rising;
         res.rebound_speed_m_s = B.velocity_m_s[0].z();
+      } else if (ke < kRestEnergyRatio * e_release) {
+        // A dead impact (low restitution, a clump rocking onto its side): the body stays on the
+        // plate. Resting once its kinetic energy has stayed below the threshold for kRestTime_s
+        // (a moment of zero speed at the deepest point of a bounce lasts far less).
+        if (rest_since_s < 0.0) rest_since_s = run.time_s();
+        if (run.time_s() - rest_since_s >= kRestTime_s) {
+          res.run.stop_reason = "came to rest on the plate without rebounding";
+          break;
+        }
+      } else {
+        rest_since_s = -1.0;
       }
     }
     if (phase == Phase::rising) {
@@ -82,6 +101,10 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
         break;
       }
     }
+  }
+  if (res.run.failure.status == RunStatus::ok && !run.final_check()) {
+    res.run.failure = run.failure();
+    res.run.stop_reason = std::string("guard: ") + to_string(run.failure().status);
   }
   res.rebound_height_m = phase == Phase::rising ? std::max(0.0, apex - com_at_touch) : 0.0;
   res.run.steps = run.step_count();

@@ -28,6 +28,11 @@ struct FreeDropResult {
   double impact_speed_m_s = 0.0;   // centre-of-mass vertical speed at the end of the last step
                                    // before the first touch
   double rebound_speed_m_s = 0.0;  // centre-of-mass vertical speed leaving the plate
+  // Largest kinetic plus potential energy (above the centre's height at first touch) over the
+  // run, divided by the energy at release m g drop_height_m. The elastic energy stored in the
+  // contact is not counted, so a correct run stays at or below 1; above 1 the integrator gained
+  // energy (a time step too large for the contact).
+  double max_energy_ratio = 0.0;
   Quat orientation = Quat::Identity();
 };
 

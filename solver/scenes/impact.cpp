@@ -70,6 +70,10 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
     if (observer) observer(sim);
   }
   if (in_first_impact) res.contact_duration_s = sim.time_s() - res.first_touch_s;
+  if (res.run.failure.status == RunStatus::ok && !sim.final_check()) {
+    res.run.failure = sim.failure();
+    res.run.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
+  }
 
   const BodyState& B = sim.bodies();
   for (std::uint32_t id = 0; id < B.size(); ++id) {  // input order, whatever the storage order

@@ -19,6 +19,11 @@ PilingResult run_piling(const PilingSpec& spec) {
   const double tube_h = 2.0 * spec.fill_height_m;
   const double g = spec.physics.gravity_m_s2.norm();
   const double dt = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * tube_h));
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  const double pour_kg = std::numbers::pi * R * R * spec.fill_height_m * rho * 0.55;
+  check_pour_memory(spec.physics, spec.seeds, pour_kg, spec.threads, "tube_diameter_m",
+                    describe_rig({{"tube_diameter_m", spec.tube_diameter_m},
+                                  {"fill_height_m", spec.fill_height_m}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
                  seed_options(spec.physics, dt, spec.threads, spec.seed));
   Wall plate;
@@ -32,7 +37,6 @@ PilingResult run_piling(const PilingSpec& spec) {
   tube.material = spec.tube_material;
   const std::size_t tube_index = sim.add_wall(tube);
 
-  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
   FactorySpec fs;
   fs.body = spec.seeds.body;
   fs.scale = spec.seeds.scale;
@@ -40,7 +44,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.3 * spec.fill_height_m);
   fs.region.height_m = tube_h - 0.3 * spec.fill_height_m;
-  pour_seeds(sim, fs, std::numbers::pi * R * R * spec.fill_height_m * rho * 0.55, 20, 0.15);
+  pour_seeds(sim, fs, pour_kg, 20, 0.15);
   SettleCriteria sc;
   sc.max_time_s = 1.5;
   sc.check_interval_s = 0.005;

@@ -20,11 +20,23 @@ TimeStepLimits time_step_limits(const Simulation& sim, double expected_impact_sp
   TimeStepLimits lim;
   lim.rayleigh_s = sim.rayleigh_time_step_s();
   lim.impact_speed_m_s = expected_impact_speed_m_s;
+  const auto& S = sim.spheres();
+  const auto& table = sim.table();
+  // The sphere with the smallest Rayleigh step, named for the message.
+  for (std::size_t i = 0; i < S.size(); ++i) {
+    const Material& m = table.materials()[S.material[i]];
+    if (rayleigh_time_step_s(S.radius_m[i], m.density_kg_m3, m.shear_modulus_pa(), m.poisson_ratio) >
+        lim.rayleigh_s)
+      continue;
+    std::ostringstream w;
+    w << "'" << m.name << "' sphere r = " << S.radius_m[i] << " m, E = " << m.youngs_modulus_pa
+      << " Pa, nu = " << m.poisson_ratio << ", density " << m.density_kg_m3 << " kg/m3";
+    lim.rayleigh_from = w.str();
+    break;
+  }
   if (expected_impact_speed_m_s <= 0.0) return lim;
   // Shortest contact: the smallest sphere of each material (as a lone sphere: the smallest mass)
   // against every material it can touch, walls included.
-  const auto& S = sim.spheres();
-  const auto& table = sim.table();
   const std::size_t nm = table.material_count();
   std::vector<double> r_min(nm, std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < S.size(); ++i)
@@ -44,7 +56,14 @@ TimeStepLimits time_step_limits(const Simulation& sim, double expected_impact_sp
                                             std::numbers::pi * std::pow(r_min[b], 3)
                                       : std::numeric_limits<double>::infinity();
       const double mstar = std::isfinite(mb) ? ma * mb / (ma + mb) : ma;
-      tc = std::min(tc, hertz_impact(mstar, rstar, pc.e_star_pa, expected_impact_speed_m_s).contact_time_s);
+      const double t = hertz_impact(mstar, rstar, pc.e_star_pa, expected_impact_speed_m_s).contact_time_s;
+      if (t < tc) {
+        tc = t;
+        std::ostringstream w;
+        w << "'" << table.materials()[a].name << "' (r = " << ra << " m) on '"
+          << table.materials()[b].name << "'";
+        lim.contact_from = w.str();
+      }
     }
   }
   lim.contact_time_s = std::isfinite(tc) ? tc : 0.0;
@@ -55,9 +74,12 @@ double choose_time_step(const TimeStepSpec& spec, const TimeStepLimits& limits) 
   const double limit = limits.stable_limit_s();
   std::ostringstream why;
   why << "the stable limit is " << limit << " s (Rayleigh step " << limits.rayleigh_s << " s";
-  if (limits.contact_time_s > 0.0)
-    why << "; a tenth of the Hertz contact time at " << limits.impact_speed_m_s << " m/s is "
-        << 0.1 * limits.contact_time_s << " s";
+  if (!limits.rayleigh_from.empty()) why << " of the " << limits.rayleigh_from;
+  if (limits.contact_time_s > 0.0) {
+    why << "; a tenth of the Hertz contact time";
+    if (!limits.contact_from.empty()) why << " of " << limits.contact_from;
+    why << " at " << limits.impact_speed_m_s << " m/s is " << 0.1 * limits.contact_time_s << " s";
+  }
   why << ")";
   if (spec.dt_s > 0.0) {
     if (spec.dt_s > limit && !spec.force_dt) {

@@ -1,6 +1,10 @@
 #include "solver/scenes/seed_bed.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include "solver/sim/memory_estimate.hpp"
 
 namespace seedcal {
 
@@ -14,6 +18,37 @@ double seed_time_step(const PhysicsSpec& physics, const TimeStepSpec& ts, const 
   const double s_min = seeds.scale.sd > 0.0 ? seeds.scale.lo : seeds.scale.mean;
   probe.add_body(scaled_body(seeds.body, s_min));
   return choose_time_step(ts, time_step_limits(probe, impact_speed_m_s));
+}
+
+void check_pour_memory(const PhysicsSpec& physics, const SeedSpec& seeds, double mass_kg, int threads,
+                       const std::string& key, const std::string& rig) {
+  // Mean seed mass: template mass x E[s^3] (as seed_volume_m3).
+  const double m = seeds.scale.mean, sd = seeds.scale.sd;
+  const double seed_mass = seeds.body.mass_kg * (m * m * m + 3.0 * m * sd * sd);
+  if (!(seed_mass > 0.0) || !(mass_kg > 0.0)) return;
+  const double count = std::ceil(mass_kg / seed_mass);
+  const double spheres = count * static_cast<double>(seeds.body.spheres.size());
+  // Beyond 2^53 the count is not even representable; such a rig is refused all the same.
+  const double cap = 9.0e15;
+  const MemoryEstimate est =
+      estimate_memory(static_cast<std::size_t>(std::min(count, cap)),
+                      static_cast<std::size_t>(std::min(spheres, cap)), threads,
+                      physics.contact.rolling == RollingModel::epsd);
+  std::ostringstream what;
+  what.precision(3);
+  what << rig << " takes about " << count << " seeds (" << mass_kg << " kg)";
+  check_memory(est, available_memory_bytes(), key, what.str());
+}
+
+std::string describe_rig(std::initializer_list<std::pair<const char*, double>> keys) {
+  std::ostringstream s;
+  s.precision(4);
+  const char* sep = "";
+  for (const auto& [k, v] : keys) {
+    s << sep << k << " = " << v;
+    sep = ", ";
+  }
+  return s.str();
 }
 
 SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed) {
@@ -53,8 +88,10 @@ std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation&
   return out;
 }
 
-void finish_report(RunReport& r, const Simulation& sim, double cpu0_s,
+void finish_report(RunReport& r, Simulation& sim, double cpu0_s,
                    std::chrono::steady_clock::time_point wall_t0) {
+  if (sim.failure().status == RunStatus::ok && !sim.final_check())
+    r.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
   r.failure = sim.failure();
   r.steps = sim.step_count();
   r.bodies = sim.bodies().size();

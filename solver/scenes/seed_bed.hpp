@@ -2,6 +2,9 @@
 // Shared by the seed scenes: the time step for a particle template and its scale range, and the
 // insertion of seeds by the particle factory.
 #include <chrono>
+#include <initializer_list>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/scenes/scene_common.hpp"
@@ -20,6 +23,15 @@ struct SeedSpec {
 double seed_time_step(const PhysicsSpec& physics, const TimeStepSpec& ts, const SeedSpec& seeds,
                       double impact_speed_m_s);
 
+// Refuses, before anything is allocated, a pour of `mass_kg` of seeds that would not fit in the
+// memory available (sim/memory_estimate.hpp): throws SettingError naming `key`, with `rig` (the
+// rig's size in words) and the estimate in the message.
+void check_pour_memory(const PhysicsSpec& physics, const SeedSpec& seeds, double mass_kg, int threads,
+                       const std::string& key, const std::string& rig);
+
+// "diameter_m = 0.2, depth_m = 0.05": a rig's size for messages.
+std::string describe_rig(std::initializer_list<std::pair<const char*, double>> keys);
+
 // Simulation options common to the seed scenes.
 SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed);
 
@@ -31,7 +43,8 @@ double pour_seeds(Simulation& sim, const FactorySpec& spec, double mass_kg, int 
 std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation& sim);
 
 // Fills the counters and timings of a scene's run report.
-void finish_report(RunReport& r, const Simulation& sim, double cpu0_s,
+// Runs the simulation's final guard check first (a failure there is reported like any other).
+void finish_report(RunReport& r, Simulation& sim, double cpu0_s,
                    std::chrono::steady_clock::time_point wall_t0);
 
 // Mean volume of one seed (template volume x E[s^3]), m3, from the template's mass and density.

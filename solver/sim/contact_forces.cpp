@@ -152,7 +152,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           T[bi] += tau;
           T[bj] -= tau;
         }
-        st.note(overlap, cf.normal_force_n, std::min(ri, rj), bi);
+        st.note(overlap, cf.normal_force_n, std::min(ri, rj), ri <= rj ? bi : bj);
       }
       sphere_group_touch[g] = touching;
       st.sphere_contacts += static_cast<std::size_t>(touching);
@@ -239,6 +239,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
          (total.worst_body < 0 || st.worst_body < total.worst_body))) {
       total.worst_ratio = st.worst_ratio;
       total.worst_body = st.worst_body;
+      total.worst_radius = st.worst_radius;
     }
   }
 }

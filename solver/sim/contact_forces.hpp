@@ -15,6 +15,7 @@ struct ThreadStats {
   double max_overlap = 0.0, max_fn = 0.0;
   double worst_ratio = 0.0;  // overlap / smaller radius, recorded only above `ratio_limit`
   std::int64_t worst_body = -1;
+  double worst_radius = 0.0;  // the smaller radius of the worst pair
   double ratio_limit = 0.5;
   // Called for every touching pair: two compares on the hot path, the division only when the
   // overlap guard is about to trip.
@@ -23,7 +24,7 @@ struct ThreadStats {
     max_fn = std::max(max_fn, fn);
     if (overlap > ratio_limit * r_min) {
       const double ratio = overlap / r_min;
-      if (ratio > worst_ratio) { worst_ratio = ratio; worst_body = body; }
+      if (ratio > worst_ratio) { worst_ratio = ratio; worst_body = body; worst_radius = r_min; }
     }
   }
 };

@@ -1,5 +1,6 @@
 #include "solver/sim/particle_factory.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -7,6 +8,7 @@
 #include <unordered_map>
 
 #include "solver/scenes/free_drop.hpp"  // uniform_random_rotation
+#include "solver/sim/memory_estimate.hpp"
 #include "solver/walls/wall_contact_list.hpp"
 
 namespace seedcal {
@@ -55,6 +57,30 @@ class SphereGrid {
 }  // namespace
 
 FactoryResult insert_particles(Simulation& sim, const FactorySpec& spec) {
+  // Refuse up front what would not fit in memory (sim/memory_estimate.hpp): the count asked for,
+  // or the mass limit in mean-sized bodies (template mass x E[s^3] of the scale distribution).
+  {
+    const double m = spec.scale.mean, sd = spec.scale.sd;
+    const double mean_mass = spec.body.mass_kg * (m * m * m + 3.0 * m * sd * sd);
+    double want = static_cast<double>(spec.count);
+    const char* key = "count";
+    if (spec.count == 0 && spec.total_mass_kg > 0.0 && mean_mass > 0.0) {
+      want = std::ceil(spec.total_mass_kg / mean_mass);
+      key = "total_mass_kg";
+    }
+    const double cap = 9.0e15;  // beyond 2^53 a count is not even representable
+    const double bodies = std::min(cap, static_cast<double>(sim.bodies().size()) + want);
+    const double spheres = std::min(cap, static_cast<double>(sim.spheres().size()) +
+                                             want * static_cast<double>(spec.body.spheres.size()));
+    const MemoryEstimate est = estimate_memory(
+        static_cast<std::size_t>(bodies), static_cast<std::size_t>(spheres), sim.options().threads,
+        sim.options().contact.rolling == RollingModel::epsd);
+    std::ostringstream what;
+    what.precision(3);
+    what << "the particle factory asked for " << want << " bodies of "
+         << spec.body.spheres.size() << " spheres";
+    check_memory(est, available_memory_bytes(), key, what.str());
+  }
   FactoryResult res;
   auto& rng = sim.rng();
   const ScaleDistribution& sc = spec.scale;

@@ -247,10 +247,29 @@ void Simulation::compute_forces(bool mid_step) {
   }
   if (total.worst_ratio > options_.guards.max_overlap_fraction && failure_.status == RunStatus::ok) {
     std::ostringstream m;
-    m << "overlap reached " << total.worst_ratio << " of a sphere radius (limit "
-      << options_.guards.max_overlap_fraction
-      << "); likely cause: particles too soft for the load (raise youngs_modulus_pa) or a time "
-         "step too large for the impact speed (lower dt_s)";
+    m << "overlap reached " << total.worst_ratio << " of the radius of a sphere with r = "
+      << total.worst_radius << " m (limit " << options_.guards.max_overlap_fraction
+      << "; Hertz contact assumes an overlap much smaller than the radius)";
+    // A clump whose spheres differ much in size: a small sphere standing out of a large one
+    // takes the body's whole momentum alone before the large sphere touches.
+    double r_body_max = 0.0;
+    if (total.worst_body >= 0) {
+      const auto b = static_cast<std::size_t>(total.worst_body);
+      for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
+        r_body_max = std::max(r_body_max, spheres_.radius_m[i]);
+    }
+    const std::string step_note = step_size_note();
+    if (!step_note.empty()) {
+      m << "; likely cause: " << step_note;
+    } else if (r_body_max >= 5.0 * total.worst_radius) {
+      m << "; likely cause: the body's spheres range from r = " << total.worst_radius << " to "
+        << r_body_max << " m (radius ratio 1:" << r_body_max / total.worst_radius
+        << ") and the small sphere carries the body alone: make the small spheres of the clump "
+           "larger or let them stand out less, or raise youngs_modulus_pa";
+    } else {
+      m << "; likely cause: particles too soft for the load (raise youngs_modulus_pa) or a time "
+           "step too large for the impact speed (lower dt_s)";
+    }
     fail(RunStatus::deep_overlap, total.worst_body, m.str());
   }
   forces_valid_ = true;
@@ -305,9 +324,12 @@ bool Simulation::step() {
   }
   lap(prof, t0, profile_.integrate_s);
   if (first_bad != std::numeric_limits<std::int64_t>::max() && failure_.status == RunStatus::ok) {
+    const std::string step_note = step_size_note();
     fail(RunStatus::non_finite, first_bad,
-         "position or velocity is not finite; likely cause: time step above the stable limit "
-         "for the stiffest contact (lower dt_s or rayleigh_fraction)");
+         "position or velocity is not finite; likely cause: " +
+             (step_note.empty() ? std::string("time step above the stable limit for the stiffest "
+                                              "contact (lower dt_s or rayleigh_fraction)")
+                                : step_note));
     return false;
   }
   return check_guards();
@@ -351,6 +373,19 @@ double Simulation::energy_budget_j() const {
          m_total * std::max(options_.gravity_m_s2.norm(), 1.0) * 2.0 * r_max;
 }
 
+// A guard message's hint when the step itself is the likely cause: above the Rayleigh step of the
+// smallest sphere (sim/time_step.hpp) no explicit DEM step is stable for resting contacts.
+std::string Simulation::step_size_note() const {
+  const double dt_r = rayleigh_time_step_s();
+  if (!(options_.dt_s > dt_r)) return "";
+  std::ostringstream m;
+  m.precision(3);
+  m << "the time step dt_s = " << options_.dt_s << " s is " << options_.dt_s / dt_r
+    << " x the Rayleigh step of the smallest sphere (" << dt_r
+    << " s): lower dt_s or rayleigh_fraction (docs/time_step.md)";
+  return m.str();
+}
+
 void Simulation::fail(RunStatus s, std::int64_t body, std::string message) {
   failure_.status = s;
   failure_.step = step_;
@@ -364,11 +399,16 @@ void Simulation::fail(RunStatus s, std::int64_t body, std::string message) {
   if (log_) log_(failure_.message);
 }
 
-bool Simulation::check_guards() {
+bool Simulation::final_check() {
+  if (!ready_ || failure_.status != RunStatus::ok) return failure_.status == RunStatus::ok;
+  return check_guards(true);
+}
+
+bool Simulation::check_guards(bool energy_now) {
   if (failure_.status != RunStatus::ok) return false;
   const std::size_t nb = bodies_.size();
   const int every = std::max(1, options_.guards.check_interval);
-  if (step_ % static_cast<std::uint64_t>(every) == 0) {
+  if (energy_now || step_ % static_cast<std::uint64_t>(every) == 0) {
     const double ke = kinetic_energy_j();
     const double released = reference_potential_j_ - potential_energy_j();
     const double limit = options_.guards.max_energy_factor * reference_energy_j_;
@@ -383,8 +423,11 @@ bool Simulation::check_guards() {
       m << "kinetic energy " << ke << " J, less the potential energy released (" << released
         << " J), exceeds " << options_.guards.max_energy_factor
         << " x the energy the scene can supply (" << reference_energy_j_
-        << " J); likely cause: time step above the stable limit (lower dt_s) or interpenetrating "
-           "initial positions";
+        << " J); likely cause: "
+        << (step_size_note().empty()
+                ? std::string("time step above the stable limit (lower dt_s) or interpenetrating "
+                              "initial positions")
+                : step_size_note());
       fail(RunStatus::energy_runaway, static_cast<std::int64_t>(worst), m.str());
       return false;
     }

@@ -65,6 +65,10 @@ class Simulation {
   bool step();
   // Advances up to n steps; stops early on a guard failure.
   bool run(std::uint64_t n);
+  // Runs every guard now, the energy guard included (inside step() it runs only every
+  // GuardOptions::check_interval steps, so a run shorter than that, or one that blows up after its
+  // last check, would end unchecked). Scenes call it when they end. Returns false on a failure.
+  bool final_check();
 
   std::uint32_t index_of(std::uint32_t id) const { return index_of_id_[id]; }
   const BodyState& bodies() const { return bodies_; }
@@ -104,13 +108,14 @@ class Simulation {
   // predicted end-of-step velocities; false when the velocities are already at the force time.
   void compute_forces(bool mid_step);
   void predict_end_velocities(bool mid_step);
-  bool check_guards();
+  bool check_guards(bool energy_now = false);
   double energy_budget_j() const;
   void rebuild_lists();
   void sort_spatially();
   void reorder_bodies(const std::vector<std::uint32_t>& old_of_new);
   bool walls_moved_beyond_skin() const;
   void fail(RunStatus s, std::int64_t body, std::string message);
+  std::string step_size_note() const;
 
   InteractionTable table_;
   SimulationOptions options_;
