@@ -94,6 +94,7 @@ PhysicsSpec physics(const Corner& c, bool gravity) {
 
 TimeStepSpec step_spec(StepChoice s) {
   TimeStepSpec t;
+  t.dt_s = s.dt_s;
   if (s.fraction > 0.0) {
     t.rayleigh_fraction = s.fraction;
     t.rayleigh_fraction_set = true;
@@ -141,13 +142,12 @@ void stop(Outcome& o, const RunReport& r) {
 
 }  // namespace
 
-Outcome impact(const Corner& c, StepChoice step, double speed_m_s) {
+Outcome impact(const Corner& c, StepChoice step, double speed_m_s, double gap) {
   Outcome o;
   ImpactSpec spec;
   spec.physics = physics(c, false);
   spec.time_step = step_spec(step);
   BodyDef b = shape_body(c.shape, c.density_kg_m3);
-  const double gap = 0.0005;
   b.position_m = Vec3(0.0, 0.0, depth_below_centre(b, b.orientation) + gap);
   b.velocity_m_s = Vec3(0.0, 0.0, -speed_m_s);
   spec.bodies = {b};

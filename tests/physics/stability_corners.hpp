@@ -70,13 +70,15 @@ inline constexpr double kEnergyGainBound = 0.01;
 struct StepChoice {
   double fraction = 0.0;
   bool force = false;
+  double dt_s = 0.0;  // > 0: this dt_s instead of a fraction
 };
 
 // The impact scene without gravity: the particle, 0.5 mm above the plate, moves down at
 // speed_m_s (1.7155 m/s: free fall from 150 mm) for the time of its first contact and a little
 // more. restitution_out is the rebound over the impact speed (spheres only: a clump turns);
 // max_energy_ratio the largest kinetic energy over the initial (no gravity, so it may not rise).
-Outcome impact(const Corner& c, StepChoice step, double speed_m_s = 1.7155);
+// gap_m: the starting distance to the plate (sets where within a step the contact begins).
+Outcome impact(const Corner& c, StepChoice step, double speed_m_s = 1.7155, double gap_m = 0.0005);
 
 // The free_drop scene (gravity, 150 mm onto steel, a fixed orientation for spheres, the scene's
 // random one from seed 1 for clumps); restitution_out from its impact and rebound speeds.
