@@ -6,7 +6,9 @@
 // bracketing points) with a half-width of `box_half_width` coded units, moved (not shrunk) to stay
 // inside each parameter's hard limits.
 #include <cmath>
+#include <cstdio>
 
+#include "calibrate/cli/errors.hpp"
 #include "calibrate/study/pipeline.hpp"
 #include "doe/rsm/steepest_ascent.hpp"
 
@@ -103,6 +105,25 @@ nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& sto
     }
     report["stop_reason"] = stop;
     report["bracketed"] = bracketed;
+    if (stop == "parameter limit" && !bracketed) {
+      // The path ran into the parameters' min/max with the response still on the near side of
+      // the target: no value inside the limits reaches it along the direction the screening
+      // found. The study stops here as a bad study (exit 2); its runs stay in the store.
+      const auto& last = report["points"].back();
+      std::string at;
+      for (std::size_t k = 0; k < st.kept.size(); ++k)
+        at += (k ? ", " : "") + s.parameters[static_cast<std::size_t>(st.kept[k])].path + " = " +
+              last["natural"][k].dump();
+      report["unreachable"] = true;
+      store.set_stage("ascent", report);
+      char msg[512];
+      std::snprintf(msg, sizeof msg, "%s: target %s = %.6g cannot be reached inside the parameters' min/max: the "
+                    "steepest %s path stopped at the limits (%s) with %.6g (screening centre %.6g); widen min/max of "
+                    "the calibrated parameters, calibrate another one, or check the target",
+                    s.file.c_str(), s.targets[static_cast<std::size_t>(primary)].metric.c_str(), target,
+                    o.descent ? "descent" : "ascent", at.c_str(), prev_y, st.screen_mean);
+      throw InputError(msg);
+    }
     set_box(bracketed ? crossing : best, s.ascent.box_half_width);
   }
   nlohmann::json box = nlohmann::json::object();

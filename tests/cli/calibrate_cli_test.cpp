@@ -268,5 +268,26 @@ TEST(CalibrateCli, OneParameterNoiseFreeScreening) {
   std::filesystem::remove_all(dir);
 }
 
+// A target no value inside the parameters' limits can reach: the contact time of E = 3.3e10 Pa
+// made ten times longer needs E about 300 times lower, far below min = 1e10. The steepest descent
+// runs into the limit and the study stops as a bad study (exit 2) naming the target and the
+// limits; the runs it made stay in the store.
+TEST(CalibrateCli, UnreachableTargetIsAClearError) {
+  const std::string dir = scratch_dir("calibrate-unreachable");
+  const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
+  write_text(dir + "/study.toml", "name = \"unreachable\"\n" +
+                                      target("contact_duration_s", 10.0 * m["contact_duration_s"].get<double>()) +
+                                      "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 2.0e10\n"
+                                      "high = 6.0e10\nmin = 1.0e10\nmax = 1.0e11\ncalibrate = true\n\n"
+                                      "[[parameter]]\npath = \"glass_glass.restitution\"\nlow = 0.6\nhigh = 0.95\n"
+                                      "nominal = 0.9\n\n[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\n");
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot be reached inside the parameters' min/max"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("materials.glass.youngs_modulus_pa = 1"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/out/study.h5"));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace seedcal::testing
