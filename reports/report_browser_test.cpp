@@ -26,19 +26,6 @@ std::string chromium() {
   return "";
 }
 
-// Runs a shell command; its exit code and standard output.
-CliResult run_command(const std::string& cmd) {
-  CliResult r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
 std::vector<std::string> matches(const std::string& text, const std::regex& re) {
   std::vector<std::string> out;
   for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) out.push_back((*it)[1].str());
@@ -71,11 +58,11 @@ TEST(ReportBrowser, ChromiumLoadsEverySectionAndPlot) {
   fs::remove(shot);
   const std::string flags = " --headless --disable-gpu --no-sandbox --hide-scrollbars --user-data-dir=" + dir + "/profile ";
   const std::string url = "file://" + html_path;
-  const auto dom = run_command(browser + flags + "--dump-dom " + url + " 2>/dev/null");
+  const auto dom = run_shell(browser + flags + "--dump-dom " + url + " 2>/dev/null");
   ASSERT_EQ(dom.exit_code, 0) << dom.output.substr(0, 2000);
   for (const auto& h : headings) EXPECT_NE(dom.output.find("<h2>" + h + "</h2>"), std::string::npos) << h;
   EXPECT_EQ(count(dom.output, "<svg"), svgs);
-  const auto png = run_command(browser + flags + "--window-size=1280,6000 --screenshot=" + shot + " " + url + " 2>&1");
+  const auto png = run_shell(browser + flags + "--window-size=1280,6000 --screenshot=" + shot + " " + url + " 2>&1");
   EXPECT_EQ(png.exit_code, 0) << png.output;
   EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 10000) << shot;
   std::cout << "screenshot: " << shot << "\n";

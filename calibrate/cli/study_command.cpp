@@ -32,6 +32,14 @@ void check_file(const std::string& option, const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(option + " = " + path + ": no such file");
 }
 
+// Options every DEM study shares, resolved when its command runs.
+void prepare(StudyArgs& a, const GlobalOptions& g) {
+  a.o.threads = g.resolved_threads();
+  a.o.seed = g.seed;
+  a.o.out_dir = a.out;
+  check_file("--free-drop", a.o.free_drop_scene);
+}
+
 void add_dem_options(CLI::App* sub, StudyArgs& a) {
   sub->add_option("--free-drop", a.o.free_drop_scene, "free_drop scene file")->capture_default_str();
   sub->add_option("--set", a.o.sets, "override for every scene: key=value (e.g. particle.clump_file=...)");
@@ -57,10 +65,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   mc->add_option("--drum-repeats", a->o.drum_repeats, "drum runs per model")->check(CLI::Range(1, 100))->capture_default_str();
   add_common_options(*mc, g);
   mc->callback([a, &g] {
-    a->o.threads = g.resolved_threads();
-    a->o.seed = g.seed;
-    a->o.out_dir = a->out;
-    check_file("--free-drop", a->o.free_drop_scene);
+    prepare(*a, g);
     if (!a->drum) a->o.drum_scene.clear();
     else check_file("--drum-scene", a->o.drum_scene);
     finish("multicontact", multicontact_study(a->o), *a, g);
@@ -72,10 +77,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
       ->check(CLI::Range(1e3, 1e12))->capture_default_str();
   add_common_options(*st, g);
   st->callback([a, &g] {
-    a->o.threads = g.resolved_threads();
-    a->o.seed = g.seed;
-    a->o.out_dir = a->out;
-    check_file("--free-drop", a->o.free_drop_scene);
+    prepare(*a, g);
     finish("stiffness", stiffness_study(a->o), *a, g);
   });
 

@@ -27,9 +27,9 @@ inline std::string source_dir() {
   return s ? s : ".";
 }
 
-inline CliResult run_cli(const std::string& args) {
+// Runs a shell command line; its exit code and standard output.
+inline CliResult run_shell(const std::string& cmd) {
   CliResult r;
-  const std::string cmd = seedcal_binary() + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   if (!p) return r;
   std::array<char, 4096> buf{};
@@ -39,6 +39,8 @@ inline CliResult run_cli(const std::string& args) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
+
+inline CliResult run_cli(const std::string& args) { return run_shell(seedcal_binary() + " " + args + " 2>&1"); }
 
 // A fresh scratch directory under the system temp dir.
 inline std::string scratch_dir(const std::string& name) {
