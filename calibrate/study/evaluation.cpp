@@ -9,7 +9,7 @@
 #include "calibrate/cli/version_string.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
+#include "calibrate/scenes/scene_file.hpp"
 #include "solver/core/errors.hpp"
 
 namespace seedcal {
@@ -56,18 +56,10 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   try {
-    toml::value doc = TomlReader::parse_file(target.scene);
     std::vector<std::string> sets = model.sets;
     sets.insert(sets.end(), target.sets.begin(), target.sets.end());
     for (const auto& [path, value] : request.inputs.items()) sets.push_back(path + "=" + number_text(value.get<double>()));
-    apply_overrides(doc, sets);
-    const std::string kind = doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
-    const auto& reg = scene_registry();
-    const auto it = reg.find(kind);
-    if (it == reg.end()) throw InputError(target.scene + ": kind = \"" + kind + "\": unknown scene kind");
-    SceneContext ctx{target.scene, request.out_dir, threads, request.seed};
-    if (!request.out_dir.empty()) std::filesystem::create_directories(request.out_dir);
-    rec.metrics = run_repeated(it->second, doc, target.scene, ctx, 1);
+    rec.metrics = run_scene_file(target.scene, sets, threads, request.seed, 1, request.out_dir);
     rec.status = rec.metrics.value("status", "ok");
     if (rec.status != "ok" && rec.metrics.contains("failure"))
       rec.message = rec.metrics["failure"].value("message", "");
