@@ -3,12 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
-#include <filesystem>
 #include <limits>
 
 #include "calibrate/cli/version_string.hpp"
-#include "calibrate/config/overrides.hpp"
-#include "calibrate/config/toml_reader.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "solver/core/errors.hpp"
 
