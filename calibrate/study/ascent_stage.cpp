@@ -5,6 +5,9 @@
 // surrogate box is centred where the path crosses the target (linear interpolation between the
 // bracketing points) with a half-width of `box_half_width` coded units, moved (not shrunk) to stay
 // inside each parameter's hard limits.
+// The path is projected onto the limits (bound-constrained steepest ascent): a factor that reaches
+// its min or max stays there while the others go on along their components of the direction. The
+// target counts as unreachable only when every factor that moves has stopped at a limit.
 #include <cmath>
 #include <cstdio>
 
@@ -78,12 +81,11 @@ nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& sto
     report["points"] = nlohmann::json::array();
     for (int k = 1; k <= s.ascent.max_steps; ++k) {
       Eigen::VectorXd x = prev + dx;
-      bool at_limit = false;
-      for (Eigen::Index j = 0; j < n; ++j) {
-        const double clipped = std::clamp(x(j), c.lo_limit(j), c.hi_limit(j));
-        at_limit = at_limit || clipped != x(j);
-        x(j) = clipped;
-      }
+      for (Eigen::Index j = 0; j < n; ++j) x(j) = std::clamp(x(j), c.lo_limit(j), c.hi_limit(j));
+      if ((x - prev).cwiseAbs().maxCoeff() < 1e-12) { stop = "parameter limit"; break; }  // all pinned
+      bool all_pinned_after = true;  // no factor can move on from x
+      for (Eigen::Index j = 0; j < n; ++j)
+        if (dx(j) != 0.0 && std::clamp(x(j) + dx(j), c.lo_limit(j), c.hi_limit(j)) != x(j)) all_pinned_after = false;
       const Eigen::VectorXd natural = c.centre + c.half.cwiseProduct(x);
       const auto records = ev.run(ev.plan("ascent", full_point(st, natural), s.screen.replicates));
       const double y = mean_responses(s, records, 1, s.screen.replicates)(0, primary);
@@ -101,7 +103,7 @@ nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& sto
       }
       prev = x;
       prev_y = y;
-      if (at_limit) { stop = "parameter limit"; break; }
+      if (all_pinned_after) { stop = "parameter limit"; break; }
     }
     report["stop_reason"] = stop;
     report["bracketed"] = bracketed;
@@ -109,11 +111,11 @@ nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& sto
       // The path ran into the parameters' min/max with the response still on the near side of
       // the target: no value inside the limits reaches it along the direction the screening
       // found. The study stops here as a bad study (exit 2); its runs stay in the store.
-      const auto& last = report["points"].back();
+      const Eigen::VectorXd last = c.centre + c.half.cwiseProduct(prev);
       std::string at;
       for (std::size_t k = 0; k < st.kept.size(); ++k)
         at += (k ? ", " : "") + s.parameters[static_cast<std::size_t>(st.kept[k])].path + " = " +
-              last["natural"][k].dump();
+              nlohmann::json(last(static_cast<Eigen::Index>(k))).dump();
       report["unreachable"] = true;
       store.set_stage("ascent", report);
       char msg[512];

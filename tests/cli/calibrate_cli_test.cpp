@@ -270,8 +270,9 @@ TEST(CalibrateCli, OneParameterNoiseFreeScreening) {
 
 // A target no value inside the parameters' limits can reach: the contact time of E = 3.3e10 Pa
 // made ten times longer needs E about 300 times lower, far below min = 1e10. The steepest descent
-// runs into the limit and the study stops as a bad study (exit 2) naming the target and the
-// limits; the runs it made stay in the store.
+// runs into E's limit, the restitution (a small effect) goes on alone until it stops at its own,
+// and the study stops as a bad study (exit 2) naming the target and the limits; the runs it made
+// stay in the store.
 TEST(CalibrateCli, UnreachableTargetIsAClearError) {
   const std::string dir = scratch_dir("calibrate-unreachable");
   const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
@@ -280,12 +281,38 @@ TEST(CalibrateCli, UnreachableTargetIsAClearError) {
                                       "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 2.0e10\n"
                                       "high = 6.0e10\nmin = 1.0e10\nmax = 1.0e11\ncalibrate = true\n\n"
                                       "[[parameter]]\npath = \"glass_glass.restitution\"\nlow = 0.6\nhigh = 0.95\n"
-                                      "nominal = 0.9\n\n[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\n");
+                                      "nominal = 0.9\n\n[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\nmax_steps = 12\n");
   const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("cannot be reached inside the parameters' min/max"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("materials.glass.youngs_modulus_pa = 1"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/out/study.h5"));
+  std::filesystem::remove_all(dir);
+}
+
+// A factor that reaches its limit first does not end the path: the density (strong effect,
+// min/max = low/high) stops at its max after one step and the Young's modulus goes on alone until
+// the contact time is bracketed (bound-constrained steepest ascent). The target, the contact time
+// of E = 2e10 Pa at 4000 kg/m3, lies outside the screening box but inside E's limits.
+TEST(CalibrateCli, AscentSlidesAlongALimit) {
+  const std::string dir = scratch_dir("calibrate-slide");
+  const auto m = impact_metrics(2.0e10, 4000.0, dir + "/truth");
+  write_text(dir + "/study.toml", "name = \"slide\"\nseed = 5\n" +
+                                      target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+                                      "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 3.0e10\n"
+                                      "high = 5.0e10\nmin = 5.0e9\nmax = 1.0e11\ncalibrate = true\n\n"
+                                      "[[parameter]]\npath = \"materials.glass.density_kg_m3\"\nlow = 1000.0\n"
+                                      "high = 4000.0\nmin = 1000.0\nmax = 4000.0\ncalibrate = true\n\n"
+                                      "[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\nmax_steps = 12\n\n"
+                                      "[confirm]\nreplicates = 2\ntolerance = 0.01\nmax_evaluations = 60\n");
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_EQ(s["stages"]["ascent"]["result"], "target bracketed") << s.dump(1);
+  EXPECT_GE(s["stages"]["ascent"]["points"].get<int>(), 3) << s.dump(1);  // moved on after the density stopped
+  EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
+  EXPECT_LE(s["calibrated"]["materials.glass.density_kg_m3"].get<double>(), 4000.0);
+  EXPECT_LT(s["calibrated"]["materials.glass.youngs_modulus_pa"].get<double>(), 3.0e10) << s.dump(1);
   std::filesystem::remove_all(dir);
 }
 
