@@ -1,6 +1,7 @@
 // `seedcal study multicontact|stiffness|moisture --out DIR`: the paper's section 4 studies
-// (calibrate/studies/paper_studies.hpp, docs/studies.md). Writes DIR/KIND.json (with seed,
-// options and version) and DIR/KIND.csv; prints the JSON.
+// (calibrate/studies/paper_studies.hpp, docs/studies.md), and `seedcal study tradeoff`: speed
+// against accuracy of one scene (calibrate/studies/tradeoff_study.hpp). Writes DIR/KIND.json
+// (with seed, options and version) and DIR/KIND.csv; prints the JSON.
 #include <filesystem>
 #include <iostream>
 
@@ -8,6 +9,7 @@
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/io/atomic_file.hpp"
 #include "calibrate/studies/paper_studies.hpp"
+#include "calibrate/studies/tradeoff_study.hpp"
 
 namespace seedcal {
 namespace {
@@ -19,13 +21,22 @@ struct StudyArgs {
   bool drum = false;
 };
 
+struct TradeoffArgs {
+  TradeoffOptions o;
+  std::string out = "out/tradeoff";
+};
+
+void write_study(const std::string& kind, const nlohmann::json& j, const std::string& csv, const std::string& out) {
+  std::filesystem::create_directories(out);
+  write_json_atomic(out + "/" + kind + ".json", j);
+  write_file_atomic(out + "/" + kind + ".csv", csv);
+  std::cout << j.dump(2) << "\n";
+}
+
 void finish(const std::string& kind, nlohmann::json j, const StudyArgs& a, const GlobalOptions& g) {
   j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", a.o.threads},
                      {"variety", a.variety}};
-  std::filesystem::create_directories(a.out);
-  write_json_atomic(a.out + "/" + kind + ".json", j);
-  write_file_atomic(a.out + "/" + kind + ".csv", study_csv(j));
-  std::cout << j.dump(2) << "\n";
+  write_study(kind, j, study_csv(j), a.out);
 }
 
 void check_file(const std::string& option, const std::string& path) {
@@ -55,7 +66,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   a->o.drum_scene = "data/scenes/jinong1/drum.toml";
   // The paper's section 4 model: Jinong 1, automatic filling at smoothness 2 (188 spheres in EDEM).
   a->o.sets = {"particle.clump_file=../../clumps/jinong1-auto-s2.toml"};
-  CLI::App* sub = app.add_subcommand("study", "the paper's section 4 studies: multicontact, stiffness, moisture");
+  CLI::App* sub = app.add_subcommand("study", "the paper's section 4 studies (multicontact, stiffness, moisture) and the speed-accuracy tradeoff");
   sub->require_subcommand(1);
 
   CLI::App* mc = sub->add_subcommand("multicontact", "HM vs HMNR: free drop (10 repeats) and, with --drum, the drum at 5 rpm");
@@ -79,6 +90,34 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   st->callback([a, &g] {
     prepare(*a, g);
     finish("stiffness", stiffness_study(a->o), *a, g);
+  });
+
+  auto t = std::make_shared<TradeoffArgs>();
+  t->o.scene = "data/scenes/jinong1/bulk_density.toml";
+  t->o.sets = {"fidelity=quick"};
+  CLI::App* tr = sub->add_subcommand("tradeoff", "speed against accuracy: one scene's index at several time-step "
+                                                 "fractions and Young's moduli, with CPU seconds");
+  tr->add_option("--scene", t->o.scene, "scene file")->capture_default_str();
+  tr->add_option("--metric", t->o.metric, "index key of metrics.json (default: the scene's index)");
+  tr->add_option("--set", t->o.sets, "override for every row: key=value")->capture_default_str();
+  tr->add_option("--rayleigh-fractions", t->o.rayleigh_fractions, "time-step fractions of the Rayleigh step")
+      ->check(CLI::Range(1e-4, 1.0))->capture_default_str();
+  tr->add_option("--youngs-modulus-pa", t->o.youngs_moduli_pa, "Young's moduli of --material, Pa")
+      ->check(CLI::Range(1e3, 1e12))->capture_default_str();
+  tr->add_option("--material", t->o.material, "material whose Young's modulus is swept")->capture_default_str();
+  tr->add_option("--tolerance", t->o.tolerance, "relative change of the index a user accepts")
+      ->check(CLI::Range(0.0, 1.0))->capture_default_str();
+  tr->add_option("--repeats", t->o.repeats, "seeds per row")->check(CLI::Range(1, 1000))->capture_default_str();
+  tr->add_option("--out", t->out, "output directory")->capture_default_str();
+  add_common_options(*tr, g);
+  tr->callback([t, &g] {
+    t->o.threads = g.resolved_threads();
+    t->o.seed = g.seed;
+    t->o.out_dir = t->out;
+    check_file("--scene", t->o.scene);
+    auto j = tradeoff_study(t->o);
+    j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", t->o.threads}};
+    write_study("tradeoff", j, tradeoff_csv(j), t->out);
   });
 
   CLI::App* mo = sub->add_subcommand("moisture", "Young's modulus against moisture and the dimensions after soaking");

@@ -2,45 +2,15 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <sstream>
-
-#include <gsl/gsl_statistics_double.h>
 
 #include "calibrate/clumps/moisture.hpp"
 #include "calibrate/clumps/variety.hpp"
 #include "calibrate/scenes/scene_file.hpp"
+#include "calibrate/studies/study_stats.hpp"
 
 namespace seedcal {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-// Mean and sample sd (n - 1) by GSL; NaN when there are too few values.
-nlohmann::json stats(const std::vector<double>& x) {
-  const double mean = x.empty() ? kNaN : gsl_stats_mean(x.data(), 1, x.size());
-  const double sd = x.size() < 2 ? kNaN : gsl_stats_sd_m(x.data(), 1, x.size(), mean);
-  return {{"mean", number_or_null(mean)}, {"sd", number_or_null(sd)}, {"n", x.size()}, {"samples", x}};
-}
-
-// One metric of every run of an aggregated scene result (run_repeated keeps them under "runs").
-std::vector<double> per_run(const nlohmann::json& m, const std::string& key) {
-  // A failed run (status != ok: e.g. the deep-overlap guard) has no index: it is left out, and the
-  // study reports the failure beside the statistics.
-  std::vector<double> out;
-  auto take = [&](const nlohmann::json& r) {
-    if (r.value("status", "ok") == "ok" && r.contains(key) && r[key].is_number() && std::isfinite(r[key].get<double>()))
-      out.push_back(r[key].get<double>());
-  };
-  if (m.contains("runs")) {
-    for (const auto& r : m["runs"]) take(r);
-  } else {
-    take(m);
-  }
-  return out;
-}
 
 std::vector<std::string> with(std::vector<std::string> sets, std::initializer_list<std::string> more) {
   sets.insert(sets.end(), more.begin(), more.end());
@@ -54,15 +24,13 @@ std::string sub_dir(const PaperStudyOptions& o, const std::string& name) {
 // Free drop: rebound height (m) and contact points at impact, every repeat.
 nlohmann::json free_drop(const PaperStudyOptions& o, const std::vector<std::string>& sets, const std::string& name) {
   const auto m = run_scene_file(o.free_drop_scene, sets, o.threads, o.seed, o.repeats, sub_dir(o, name));
-  nlohmann::json j = {{"rebound_height_m", stats(per_run(m, "rebound_height_m"))},
-                      {"contact_points", stats(per_run(m, "contact_points"))},
+  nlohmann::json j = {{"rebound_height_m", sample_stats(per_run(m, "rebound_height_m"))},
+                      {"contact_points", sample_stats(per_run(m, "contact_points"))},
                       {"cpu_seconds", m.value("cpu_seconds", 0.0)},
                       {"status", m.value("status", "ok")}};
   if (m.contains("failure")) j["failure"] = m["failure"];
   return j;
 }
-
-double mean_of(const nlohmann::json& s) { return s["mean"].is_number() ? s["mean"].get<double>() : kNaN; }
 
 }  // namespace
 
@@ -82,9 +50,9 @@ nlohmann::json multicontact_study(const PaperStudyOptions& o) {
     auto drum = [&](const std::string& model, const std::string& name) {
       const auto m = run_scene_file(o.drum_scene, with(o.sets, {"contact.model=" + model}), o.threads, o.seed,
                                     o.drum_repeats, sub_dir(o, name));
-      nlohmann::json d = {{"dynamic_angle_of_repose_deg", stats(per_run(m, "dynamic_angle_of_repose_deg"))},
+      nlohmann::json d = {{"dynamic_angle_of_repose_deg", sample_stats(per_run(m, "dynamic_angle_of_repose_deg"))},
                           {"cpu_seconds", m.value("cpu_seconds", 0.0)}, {"status", m.value("status", "ok")}};
-      d["frames_sd_deg"] = stats(per_run(m, "dynamic_angle_frames_sd_deg"))["samples"];
+      d["frames_sd_deg"] = sample_stats(per_run(m, "dynamic_angle_frames_sd_deg"))["samples"];
       return d;
     };
     const auto dhm = drum("hertz_mindlin", "drum_hm");

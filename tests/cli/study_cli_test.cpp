@@ -1,5 +1,6 @@
-// `seedcal study multicontact|stiffness|moisture` end to end (the paper's section 4 studies, with
+// `seedcal study multicontact|stiffness|moisture|tradeoff` end to end (the paper's section 4 studies, with
 // few repeats so that the test takes seconds; docs/studies.md has the 10-repeat numbers).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -72,6 +73,39 @@ TEST(StudyCli, MoistureFitsModulusAndSoaking) {
   EXPECT_LT(e, 2.99e6 * 1.5);
   ASSERT_EQ(j["rows"].size(), 4u);
   for (const auto& r : j["rows"]) EXPECT_GT(r["volume_growth_ratio"].get<double>(), 1.0);
+  std::filesystem::remove_all(dir);
+}
+
+// The speed-accuracy table on the free drop: four times the step fraction takes about a quarter
+// of the steps; a hundred times softer seeds take a Rayleigh step ten times longer (dt_R ~ E^-1/2);
+// the reference rows change by nothing, and every row says what it costs.
+TEST(StudyCli, TradeoffRowsMeasureCostAndChange) {
+  const std::string dir = scratch_dir("study-tradeoff");
+  const auto j = run_study("tradeoff --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml" +
+                               " --rayleigh-fractions 0.2 0.05 --youngs-modulus-pa 1.65e6 1.65e8 --repeats 2",
+                           dir, "tradeoff");
+  EXPECT_EQ(j["metric"], "rebound_height_m");
+  ASSERT_EQ(j["sweeps"].size(), 2u);
+  const auto& dt = j["sweeps"][0];
+  const auto& stiff = j["sweeps"][1];
+  ASSERT_EQ(dt["rows"].size(), 2u);
+  ASSERT_EQ(stiff["rows"].size(), 2u);
+  EXPECT_EQ(dt["reference"], 0.05);       // sorted: the finest step first
+  EXPECT_EQ(stiff["reference"], 1.65e8);  // the stiffest first
+  for (const auto* sw : {&dt, &stiff}) {
+    const auto& ref = (*sw)["rows"][0];
+    EXPECT_EQ(ref["relative_change"].get<double>(), 0.0) << ref.dump(1);
+    EXPECT_EQ(ref["speedup"].get<double>(), 1.0);
+    EXPECT_EQ(ref["index"]["n"], 2) << ref.dump(1);
+    EXPECT_TRUE((*sw)["rows"][1]["relative_change"].is_number()) << sw->dump(1);
+  }
+  const double steps_fine = dt["rows"][0]["steps_per_run"].get<double>();
+  const double steps_coarse = dt["rows"][1]["steps_per_run"].get<double>();
+  EXPECT_NEAR(steps_fine / steps_coarse, 4.0, 0.6) << dt.dump(1);
+  EXPECT_GT(stiff["rows"][1]["dt_s"].get<double>(), 3.0 * stiff["rows"][0]["dt_s"].get<double>()) << stiff.dump(1);
+  const std::string csv = read_text(dir + "/tradeoff.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
+  EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
   std::filesystem::remove_all(dir);
 }
 

@@ -1,0 +1,129 @@
+#include "calibrate/studies/tradeoff_study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "calibrate/cli/errors.hpp"
+#include "calibrate/scenes/scene_file.hpp"
+#include "calibrate/studies/study_stats.hpp"
+
+namespace seedcal {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double num(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : kNaN;
+}
+
+// One row: the scene at `set` with every repeat, reduced to the index and the cost. A setting the
+// scene refuses (a step above the stable limit) is a row with status "refused" and the message,
+// except in the reference row (the first), where it is bad input: nothing could be compared.
+nlohmann::json run_row(const TradeoffOptions& o, const std::string& set, const std::string& name, std::string& metric,
+                       bool reference) {
+  std::vector<std::string> sets = o.sets;
+  if (!set.empty()) sets.push_back(set);
+  nlohmann::json m;
+  try {
+    m = run_scene_file(o.scene, sets, o.threads, o.seed, o.repeats,
+                       o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name);
+  } catch (const InputError& e) {
+    if (reference) throw;
+    return {{"set", set}, {"index", sample_stats({})}, {"cpu_seconds_per_run", nullptr}, {"steps_per_run", nullptr},
+            {"dt_s", nullptr}, {"status", "refused"}, {"failure", {{"message", e.what()}}}};
+  }
+  if (metric.empty()) metric = m.value("index_key", "");
+  nlohmann::json row = {{"set", set}, {"index", sample_stats(per_run(m, metric))},
+                        {"cpu_seconds_per_run", sample_stats(per_run(m, "cpu_seconds"))["mean"]},
+                        {"steps_per_run", sample_stats(per_run(m, "steps"))["mean"]},
+                        {"dt_s", sample_stats(per_run(m, "dt_s"))["mean"]},
+                        {"status", m.value("status", "ok")}};
+  if (m.contains("failure")) row["failure"] = m["failure"];
+  return row;
+}
+
+// Change of every row against the reference row, its significance (|difference| above two
+// pooled standard errors, sqrt(sd_a^2/n_a + sd_b^2/n_b): the same seeds in both rows make this
+// conservative) and the speed-up; then the cheapest row within the tolerance.
+void compare(nlohmann::json& sweep, std::size_t reference, double tolerance) {
+  auto& rows = sweep["rows"];
+  const auto& ref = rows[reference];
+  const double y0 = mean_of(ref["index"]), cpu0 = num(ref, "cpu_seconds_per_run");
+  const double sd0 = num(ref["index"], "sd");
+  const double n0 = ref["index"]["n"].get<double>();
+  double best_speedup = 0.0;
+  nlohmann::json cheapest = nullptr;
+  for (auto& r : rows) {
+    const double y = mean_of(r["index"]), cpu = num(r, "cpu_seconds_per_run");
+    const double sd = num(r["index"], "sd"), n = r["index"]["n"].get<double>();
+    const double change = (y - y0) / y0;
+    const double se = std::sqrt((std::isfinite(sd) ? sd * sd / n : 0.0) + (std::isfinite(sd0) ? sd0 * sd0 / n0 : 0.0));
+    r["relative_change"] = number_or_null(change);
+    r["significant"] = std::isfinite(change) && se > 0.0 ? nlohmann::json(std::fabs(y - y0) > 2.0 * se) : nlohmann::json(nullptr);
+    r["speedup"] = number_or_null(cpu0 / cpu);
+    r["within_tolerance"] = std::isfinite(change) && std::fabs(change) <= tolerance;
+    if (r["within_tolerance"].get<bool>() && std::isfinite(cpu0 / cpu) && cpu0 / cpu > best_speedup) {
+      best_speedup = cpu0 / cpu;
+      cheapest = r["value"];
+    }
+  }
+  sweep["reference"] = ref["value"];
+  sweep["cheapest_within_tolerance"] = cheapest;
+}
+
+}  // namespace
+
+nlohmann::json tradeoff_study(const TradeoffOptions& o) {
+  std::string metric = o.metric;
+  nlohmann::json j = {{"study", "tradeoff"}, {"scene", o.scene}, {"sets", o.sets}, {"repeats", o.repeats},
+                      {"seed", o.seed}, {"tolerance", o.tolerance}};
+  nlohmann::json dt = {{"parameter", "rayleigh_fraction"}, {"rows", nlohmann::json::array()}};
+  std::vector<double> fractions = o.rayleigh_fractions;
+  std::sort(fractions.begin(), fractions.end());
+  for (const double f : fractions) {
+    char set[64], name[64];
+    std::snprintf(set, sizeof set, "rayleigh_fraction=%.17g", f);
+    std::snprintf(name, sizeof name, "rayleigh_fraction_%.3g", f);
+    auto row = run_row(o, set, name, metric, dt["rows"].empty());
+    row["value"] = f;
+    dt["rows"].push_back(row);
+  }
+  nlohmann::json stiff = {{"parameter", "materials." + o.material + ".youngs_modulus_pa"},
+                          {"rows", nlohmann::json::array()}};
+  std::vector<double> moduli = o.youngs_moduli_pa;
+  std::sort(moduli.rbegin(), moduli.rend());
+  for (const double e : moduli) {
+    char set[128], name[64];
+    std::snprintf(set, sizeof set, "materials.%s.youngs_modulus_pa=%.17g", o.material.c_str(), e);
+    std::snprintf(name, sizeof name, "youngs_modulus_%.3g", e);
+    auto row = run_row(o, set, name, metric, stiff["rows"].empty());
+    row["value"] = e;
+    stiff["rows"].push_back(row);
+  }
+  if (!dt["rows"].empty()) compare(dt, 0, o.tolerance);
+  if (!stiff["rows"].empty()) compare(stiff, 0, o.tolerance);
+  j["metric"] = metric;
+  j["sweeps"] = {dt, stiff};
+  return j;
+}
+
+std::string tradeoff_csv(const nlohmann::json& s) {
+  std::ostringstream out;
+  out.precision(10);
+  auto cell = [](const nlohmann::json& x) { return x.is_number() ? x.dump() : std::string("n/a"); };
+  out << "parameter,value,index_mean,index_sd,n,relative_change,significant,cpu_seconds_per_run,steps_per_run,"
+         "speedup,within_tolerance,status\n";
+  for (const auto& sw : s["sweeps"])
+    for (const auto& r : sw["rows"])
+      out << sw["parameter"].get<std::string>() << "," << cell(r["value"]) << "," << cell(r["index"]["mean"]) << ","
+          << cell(r["index"]["sd"]) << "," << r["index"]["n"] << "," << cell(r["relative_change"]) << ","
+          << (r["significant"].is_boolean() ? (r["significant"].get<bool>() ? "yes" : "no") : "n/a") << ","
+          << cell(r["cpu_seconds_per_run"]) << "," << cell(r["steps_per_run"]) << "," << cell(r["speedup"]) << ","
+          << (r["within_tolerance"].get<bool>() ? "yes" : "no") << "," << r["status"].get<std::string>() << "\n";
+  return out.str();
+}
+
+}  // namespace seedcal
