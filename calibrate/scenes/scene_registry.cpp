@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <gsl/gsl_statistics_double.h>
+
 namespace seedcal {
 
 const std::map<std::string, SceneRunner>& scene_registry() {
@@ -92,12 +94,10 @@ nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
     std::vector<double> xs;
     for (const auto& r : runs)
       if (r.contains(key) && r[key].is_number()) xs.push_back(r[key].get<double>());
-    double mean = 0.0, var = 0.0;
-    for (double x : xs) mean += x;
-    mean /= static_cast<double>(std::max<std::size_t>(1, xs.size()));
-    for (double x : xs) var += (x - mean) * (x - mean);
+    // Mean and sample sd (n - 1) by GSL; one run has sd 0.
+    const double mean = xs.empty() ? 0.0 : gsl_stats_mean(xs.data(), 1, xs.size());
     out[key] = mean;
-    out[key + "_sd"] = xs.size() > 1 ? std::sqrt(var / static_cast<double>(xs.size() - 1)) : 0.0;
+    out[key + "_sd"] = xs.size() > 1 ? gsl_stats_sd_m(xs.data(), 1, xs.size(), mean) : 0.0;
     out[key + "_samples"] = xs;
   }
   double cpu = 0.0, wall = 0.0;
