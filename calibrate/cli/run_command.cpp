@@ -6,11 +6,8 @@
 
 #include "calibrate/cli/commands.hpp"
 #include "calibrate/cli/errors.hpp"
-#include "calibrate/config/overrides.hpp"
-#include "calibrate/config/toml_reader.hpp"
 #include "calibrate/io/atomic_file.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
-#include "solver/core/errors.hpp"
+#include "calibrate/scenes/scene_file.hpp"
 
 namespace seedcal {
 namespace {
@@ -21,44 +18,17 @@ struct RunArgs {
   std::vector<std::string> sets;
 };
 
-std::vector<std::string> kinds() {
-  std::vector<std::string> k;
-  for (const auto& [name, _] : scene_registry()) k.push_back(name);
-  return k;
-}
-
-void run_scene(const RunArgs& a, const GlobalOptions& g) {
-  toml::value doc = TomlReader::parse_file(a.scene);
-  apply_overrides(doc, a.sets);
-  auto diag = std::make_shared<ConfigDiagnostics>();
-  diag->file = a.scene;
-  TomlReader root(doc, "", diag);
-  const std::string kind = root.has("kind") && doc.at("kind").is_string()
-                               ? doc.at("kind").as_string().str : std::string();
-  const auto& reg = scene_registry();
-  const auto it = reg.find(kind);
-  if (it == reg.end()) {
-    root.choice("kind", kinds());
-    if (!root.has("kind")) root.error("kind", "is required");
-    diag->throw_if_any();
-    throw InputError(a.scene + ": kind = \"" + kind + "\": unknown scene kind");
-  }
-  SceneContext ctx{a.scene, a.out, g.resolved_threads(), g.seed};
-  const int repeats = static_cast<int>(root.integer("repeats", 1, 1000, 1));
-  diag->throw_if_any();
-  nlohmann::json metrics;
-  try {
-    metrics = run_repeated(it->second, doc, a.scene, ctx, repeats);
-  } catch (const SettingError& e) {
-    throw InputError(a.scene + ": " + e.what());
-  }
-  metrics["scene"] = kind;
+void run_scene_command(const RunArgs& a, const GlobalOptions& g) {
+  const SceneFile scene = load_scene_file(a.scene, a.sets);
+  const int threads = g.resolved_threads();
+  nlohmann::json metrics = run_scene(scene, threads, g.seed, 0, a.out);
+  metrics["scene"] = scene.kind;
   metrics["provenance"] = {{"seedcal_version", version_string()},
                            {"config_file", a.scene},
                            {"overrides", a.sets},
                            {"seed", g.seed},
-                           {"threads", ctx.threads},
-                           {"config", toml::format(doc)}};
+                           {"threads", threads},
+                           {"config", toml::format(scene.doc)}};
   std::filesystem::create_directories(a.out);
   write_json_atomic(a.out + "/metrics.json", metrics);
   std::cout << metrics.dump(2) << "\n";
@@ -77,7 +47,7 @@ void add_run_command(CLI::App& app, GlobalOptions& g) {
   sub->add_option("--out", args->out, "output directory (default: out)");
   sub->add_option("--set", args->sets, "override a config value: key=value (dotted TOML path)");
   add_common_options(*sub, g);
-  sub->callback([args, &g] { run_scene(*args, g); });
+  sub->callback([args, &g] { run_scene_command(*args, g); });
 }
 
 }  // namespace seedcal

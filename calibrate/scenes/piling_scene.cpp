@@ -36,6 +36,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   j["sector_angles_deg"] = r.sector_angles_deg;
   j["heap_radius_m"] = r.heap_radius_m;
   j["heap_height_m"] = r.heap_height_m;
+  j["heap_foot_radius_m"] = r.foot_radius_m;
   j["seeds"] = r.seeds;
   add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
@@ -53,7 +54,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
     for (std::size_t a : {std::size_t{0}, half}) {
       if (a >= r.fits.size() || !r.fits[a].ok) continue;
       const double sign = a == 0 ? 1.0 : -1.0;
-      const double r0 = 0.2 * r.heap_radius_m, r1 = 0.9 * r.heap_radius_m;
+      const double r0 = r.fit_ranges[a].first, r1 = r.fit_ranges[a].second;
       view.lines.push_back({sign * r0, r.fits[a].intercept + r.fits[a].slope * r0, sign * r1,
                             r.fits[a].intercept + r.fits[a].slope * r1, "#d62728", ""});
     }

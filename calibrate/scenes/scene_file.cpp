@@ -5,26 +5,48 @@
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
-#include "calibrate/scenes/scene_registry.hpp"
 #include "solver/core/errors.hpp"
 
 namespace seedcal {
 
+SceneFile load_scene_file(const std::string& path, const std::vector<std::string>& sets) {
+  SceneFile f;
+  f.path = path;
+  f.doc = TomlReader::parse_file(path);
+  apply_overrides(f.doc, sets);
+  auto diag = std::make_shared<ConfigDiagnostics>();
+  diag->file = path;
+  TomlReader root(f.doc, "", diag);
+  f.kind = f.doc.contains("kind") && f.doc.at("kind").is_string() ? f.doc.at("kind").as_string().str : "";
+  const auto& reg = scene_registry();
+  const auto it = reg.find(f.kind);
+  if (it == reg.end()) {
+    std::vector<std::string> kinds;
+    for (const auto& [name, _] : reg) kinds.push_back(name);
+    root.choice("kind", kinds);  // names the allowed kinds and the closest one
+    if (!root.has("kind")) root.error("kind", "is required");
+    diag->throw_if_any();
+    throw InputError(path + ": kind = \"" + f.kind + "\": unknown scene kind");
+  }
+  f.runner = &it->second;
+  f.repeats = static_cast<int>(root.integer("repeats", 1, 1000, 1));
+  diag->throw_if_any();
+  return f;
+}
+
+nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir) {
+  if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
+  SceneContext ctx{f.path, out_dir, threads, seed};
+  try {
+    return run_repeated(*f.runner, f.doc, f.path, ctx, repeats > 0 ? repeats : f.repeats);
+  } catch (const SettingError& e) {
+    throw InputError(f.path + ": " + e.what());
+  }
+}
+
 nlohmann::json run_scene_file(const std::string& path, const std::vector<std::string>& sets, int threads,
                               std::uint64_t seed, int repeats, const std::string& out_dir) {
-  toml::value doc = TomlReader::parse_file(path);
-  apply_overrides(doc, sets);
-  const std::string kind = doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
-  const auto& reg = scene_registry();
-  const auto it = reg.find(kind);
-  if (it == reg.end()) throw InputError(path + ": kind = \"" + kind + "\": unknown scene kind");
-  if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-  SceneContext ctx{path, out_dir, threads, seed};
-  try {
-    return run_repeated(it->second, doc, path, ctx, repeats);
-  } catch (const SettingError& e) {
-    throw InputError(path + ": " + e.what());
-  }
+  return run_scene(load_scene_file(path, sets), threads, seed, repeats, out_dir);
 }
 
 }  // namespace seedcal

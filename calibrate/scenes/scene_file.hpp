@@ -1,14 +1,33 @@
 #pragma once
-// Runs a scene file in this process: read, apply overrides (--set paths), run `repeats` seeds
-// through the scene registry, return the aggregated metrics (scene_registry.hpp, run_repeated).
-// A bad config throws InputError; a failed simulation comes back with status != "ok".
+// Runs a scene file in this process: read, apply overrides (--set paths), check `kind` (with a
+// suggestion for a misspelt one) and `repeats`, run the seeds through the scene registry and
+// return the aggregated metrics (scene_registry.hpp, run_repeated). A bad config throws
+// InputError; a failed simulation comes back with status != "ok".
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <toml.hpp>
+
+#include "calibrate/scenes/scene_registry.hpp"
 
 namespace seedcal {
+
+// A scene file read and checked, overrides applied: ready to run.
+struct SceneFile {
+  std::string path;
+  toml::value doc;        // the effective config
+  std::string kind;
+  const SceneRunner* runner = nullptr;
+  int repeats = 1;        // the file's `repeats` key
+};
+
+SceneFile load_scene_file(const std::string& path, const std::vector<std::string>& sets);
+
+// Runs `repeats` seeds (seed, seed + 1, ...); repeats = 0: the file's own `repeats`.
+nlohmann::json run_scene(const SceneFile& scene, int threads, std::uint64_t seed, int repeats,
+                         const std::string& out_dir = "");
 
 nlohmann::json run_scene_file(const std::string& path, const std::vector<std::string>& sets, int threads,
                               std::uint64_t seed, int repeats, const std::string& out_dir = "");

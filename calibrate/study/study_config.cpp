@@ -22,40 +22,39 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-void read_target(TomlReader& t, StudyConfig& s) {
-  StudyTarget tg;
+// The keys a target and a verification test share: scene (relative to the study file), set,
+// metric and name.
+StudyTarget read_scene_metric(TomlReader& t, const StudyConfig& s) {
+  StudyTarget x;
   const std::string scene = t.string("scene");
-  tg.metric = t.string("metric");
-  tg.name = t.string("name", tg.metric);
+  x.metric = t.string("metric");
+  x.name = t.string("name", x.metric);
+  if (t.has("set")) x.sets = t.strings("set", 0, 64);
+  if (!scene.empty()) {
+    x.scene = resolve_data_path(scene, s.file);
+    if (!std::filesystem::exists(x.scene)) t.error("scene", "= \"" + scene + "\": no such file");
+  }
+  return x;
+}
+
+void read_target(TomlReader& t, StudyConfig& s) {
+  StudyTarget tg = read_scene_metric(t, s);
   tg.value = t.number("value", Range::open(-1e300, 1e300));
   if (t.has("value") && tg.value == 0.0) t.error("value", "= 0: a target must be non-zero (errors are relative)");
   tg.weight = t.number("weight", Range::positive(), 1.0);
-  if (t.has("set")) tg.sets = t.strings("set", 0, 64);
-  if (!scene.empty()) {
-    tg.scene = resolve_data_path(scene, s.file);
-    if (!std::filesystem::exists(tg.scene)) t.error("scene", "= \"" + scene + "\": no such file");
-  }
   t.check_unknown_keys();
   s.targets.push_back(std::move(tg));
 }
 
 // [[verify.test]]: a scene run at the calibrated values and compared with its experiment.
 void read_check(TomlReader& t, StudyConfig& s) {
-  StudyTarget c;
-  const std::string scene = t.string("scene");
-  c.metric = t.string("metric");
-  c.name = t.string("name", c.metric);
+  StudyTarget c = read_scene_metric(t, s);
   c.has_value = t.has("value");
   c.value = t.number("value", Range::open(-1e300, 1e300), 0.0);
   if (c.has_value && c.value == 0.0) t.error("value", "= 0: an experimental value must be non-zero (errors are relative)");
   c.sd = t.number("sd", Range::non_negative(), 0.0);
   if (t.has("sd") && !c.has_value) t.error("sd", "is given without a value");
   c.replicates = static_cast<int>(t.integer("replicates", 1, 50, 0));
-  if (t.has("set")) c.sets = t.strings("set", 0, 64);
-  if (!scene.empty()) {
-    c.scene = resolve_data_path(scene, s.file);
-    if (!std::filesystem::exists(c.scene)) t.error("scene", "= \"" + scene + "\": no such file");
-  }
   t.check_unknown_keys();
   for (const auto& q : s.checks)
     if (q.name == c.name) t.error("name", "= \"" + c.name + "\" is used by two verification tests");
