@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "solver/scenes/settle.hpp"
@@ -10,6 +11,69 @@
 #include "solver/walls/motion_laws.hpp"
 
 namespace seedcal {
+
+HeapMeasurement measure_heap(const std::vector<std::pair<Vec3, double>>& spheres,
+                             const std::vector<Vec3>& body_centres, double seed_size_m, int azimuths,
+                             double window_lo, double window_hi) {
+  HeapMeasurement res;
+  const double d = seed_size_m;
+  // Heap radius: the radius holding 95 % of the seeds (a few seeds that rolled away do not count).
+  std::vector<double> radial;
+  for (const Vec3& c : body_centres) radial.push_back(std::hypot(c.x(), c.y()));
+  std::sort(radial.begin(), radial.end());
+  if (!radial.empty()) res.heap_radius_m = radial[static_cast<std::size_t>(0.95 * static_cast<double>(radial.size() - 1))];
+  for (const auto& [p, r] : spheres) res.heap_height_m = std::max(res.heap_height_m, p.z() + r);
+  double sum = 0.0, sum2 = 0.0, foot_sum = 0.0;
+  int feet = 0;
+  for (int a = 0; a < azimuths; ++a) {
+    const double phi = 2.0 * std::numbers::pi * a / azimuths;
+    const Vec3 dir(std::cos(phi), std::sin(phi), 0.0);
+    std::vector<std::pair<double, double>> pts;
+    for (const auto& [p, rad] : spheres) {
+      const double along = p.x() * dir.x() + p.y() * dir.y();
+      const double across = -p.x() * dir.y() + p.y() * dir.x();
+      if (along > 0.0 && std::abs(across) < 0.5 * d) pts.push_back({along, p.z() + rad});
+    }
+    const auto prof = upper_profile(pts, 0.5 * d);
+    // The sector's own heap height (its profile's top) and the foot: the first column outward of
+    // the top that is down to one seed on the plate (z <= d). Fit where the side is between
+    // window_lo and window_hi of the height, between the top and the foot.
+    double h = 0.0, r_top = 0.0;
+    for (const auto& [r, z] : prof)
+      if (z > h) { h = z; r_top = r; }
+    double r_foot = std::numeric_limits<double>::infinity();
+    for (const auto& [r, z] : prof)
+      if (r > r_top && z <= d) { r_foot = r; break; }
+    if (std::isfinite(r_foot)) {
+      foot_sum += r_foot;
+      ++feet;
+    }
+    std::vector<double> xs, zs;
+    for (const auto& [r, z] : prof)
+      if (r >= r_top && r < r_foot && z >= window_lo * h && z <= window_hi * h) {
+        xs.push_back(r);
+        zs.push_back(z);
+      }
+    const LineFit f = fit_line(xs, zs);
+    res.profiles.push_back(prof);
+    res.fits.push_back(f);
+    res.fit_ranges.push_back(xs.empty() ? std::pair<double, double>{0.0, 0.0}
+                                        : std::pair<double, double>{xs.front(), xs.back()});
+    if (f.ok) {
+      const double ang = std::atan(-f.slope) * 180.0 / std::numbers::pi;
+      res.sector_angles_deg.push_back(ang);
+      sum += ang;
+      sum2 += ang * ang;
+    }
+  }
+  if (feet > 0) res.foot_radius_m = foot_sum / feet;
+  const double n = static_cast<double>(res.sector_angles_deg.size());
+  if (n > 0) {
+    res.angle_deg = sum / n;
+    res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.angle_deg * res.angle_deg) / (n - 1))) : 0.0;
+  }
+  return res;
+}
 
 PilingResult run_piling(const PilingSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
@@ -70,55 +134,23 @@ PilingResult run_piling(const PilingSpec& spec) {
                             : heap.reason;
 
   // Profile per sector and line fits.
-  const auto& S = sim.spheres();
   double d = 0.0;
   for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
-  // Heap radius: the radius holding 95 % of the seeds (a few seeds that rolled away do not count).
-  std::vector<double> radial;
-  for (std::size_t b = 0; b < sim.bodies().size(); ++b)
-    radial.push_back(std::hypot(sim.bodies().position_m[b].x(), sim.bodies().position_m[b].y()));
-  std::sort(radial.begin(), radial.end());
-  if (!radial.empty()) res.heap_radius_m = radial[static_cast<std::size_t>(0.95 * static_cast<double>(radial.size() - 1))];
-  for (std::size_t i = 0; i < S.size(); ++i)
-    res.heap_height_m = std::max(res.heap_height_m, S.position_m[i].z() + S.radius_m[i]);
-  double sum = 0.0, sum2 = 0.0;
-  for (int a = 0; a < spec.azimuths; ++a) {
-    const double phi = 2.0 * std::numbers::pi * a / spec.azimuths;
-    const Vec3 dir(std::cos(phi), std::sin(phi), 0.0);
-    std::vector<std::pair<double, double>> pts;
-    for (std::size_t i = 0; i < S.size(); ++i) {
-      const Vec3& p = S.position_m[i];
-      const double along = p.x() * dir.x() + p.y() * dir.y();
-      const double across = -p.x() * dir.y() + p.y() * dir.x();
-      if (along > 0.0 && std::abs(across) < 0.5 * d) pts.push_back({along, p.z() + S.radius_m[i]});
-    }
-    const auto prof = upper_profile(pts, 0.5 * d);
-    // The sector's own heap height (its profile's top); fit where the side is between window_lo
-    // and window_hi of it, outward of the top: the foot and the rounded crest are left out.
-    double h = 0.0, r_top = 0.0;
-    for (const auto& [r, z] : prof)
-      if (z > h) { h = z; r_top = r; }
-    std::vector<double> xs, zs;
-    for (const auto& [r, z] : prof)
-      if (r >= r_top && z >= spec.window_lo * h && z <= spec.window_hi * h) {
-        xs.push_back(r);
-        zs.push_back(z);
-      }
-    const LineFit f = fit_line(xs, zs);
-    res.profiles.push_back(prof);
-    res.fits.push_back(f);
-    if (f.ok) {
-      const double ang = std::atan(-f.slope) * 180.0 / std::numbers::pi;
-      res.sector_angles_deg.push_back(ang);
-      sum += ang;
-      sum2 += ang * ang;
-    }
-  }
-  const double n = static_cast<double>(res.sector_angles_deg.size());
-  if (n > 0) {
-    res.angle_of_repose_deg = sum / n;
-    res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.angle_of_repose_deg * res.angle_of_repose_deg) / (n - 1))) : 0.0;
-  }
+  d *= spec.seeds.scale.mean;
+  std::vector<std::pair<Vec3, double>> spheres;
+  for (std::size_t i = 0; i < sim.spheres().size(); ++i)
+    spheres.push_back({sim.spheres().position_m[i], sim.spheres().radius_m[i]});
+  HeapMeasurement m = measure_heap(spheres, sim.bodies().position_m, d, spec.azimuths, spec.window_lo,
+                                   spec.window_hi);
+  res.angle_of_repose_deg = m.angle_deg;
+  res.angle_sd_deg = m.angle_sd_deg;
+  res.sector_angles_deg = std::move(m.sector_angles_deg);
+  res.heap_radius_m = m.heap_radius_m;
+  res.heap_height_m = m.heap_height_m;
+  res.foot_radius_m = m.foot_radius_m;
+  res.profiles = std::move(m.profiles);
+  res.fits = std::move(m.fits);
+  res.fit_ranges = std::move(m.fit_ranges);
   res.spheres = body_spheres(sim);
   finish_report(res.run, sim, cpu0, wall_t0);
   return res;
