@@ -37,6 +37,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   j["heap_radius_m"] = r.heap_radius_m;
   j["heap_height_m"] = r.heap_height_m;
   j["heap_foot_radius_m"] = r.foot_radius_m;
+  j["tube_lift_m"] = r.lift_m;
   j["seeds"] = r.seeds;
   add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {

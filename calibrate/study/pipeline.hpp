@@ -19,6 +19,9 @@ struct PipelineState {
   Eigen::VectorXd nominal;          // natural values of every parameter (held when not kept)
   Eigen::VectorXd first_order;      // screening: coded first-order coefficients of the kept factors
   double screen_mean = 0.0;         // screening: mean response of the primary target
+  // Per target: lower 95 % bound of the run-to-run noise variance the screening measured (0 when
+  // it had no error estimate, e.g. a deterministic scene); floors the GP's noise.
+  std::vector<double> run_noise_var_floor;
   // The surrogate box in natural units, one row per kept factor.
   Eigen::VectorXd box_lo, box_hi;
   std::string surrogate_kind;       // per primary target: "quadratic" or "gp"

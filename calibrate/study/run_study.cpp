@@ -66,7 +66,11 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   nlohmann::json digest = nlohmann::json::object();
   if (stages.contains("screen")) {
     nlohmann::json sc = {{"kept", stages["screen"]["kept"]}, {"effects", nlohmann::json::object()}};
-    for (const auto& t : stages["screen"]["targets"]) sc["effects"][t.value("name", "")] = t.value("effects", nlohmann::json::array());
+    for (const auto& t : stages["screen"]["targets"]) {
+      sc["effects"][t.value("name", "")] = t.value("effects", nlohmann::json::array());
+      if (t.contains("run_noise_sd"))
+        sc["run_noise_sd"][t.value("name", "")] = {{"estimate", t["run_noise_sd"]}, {"lower95", t["run_noise_sd_lower95"]}};
+    }
     digest["screen"] = sc;
   }
   if (stages.contains("ascent"))
@@ -82,6 +86,7 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
       if (t.contains("quadratic") && t["quadratic"].contains("loo_rmse")) f["quadratic_loo_rmse"] = t["quadratic"]["loo_rmse"];
       if (t.contains("gp") && t["gp"].contains("loo_rmse")) f["gp_loo_rmse"] = t["gp"]["loo_rmse"];
       if (t.contains("gp") && t["gp"].contains("noise_sd")) f["gp_noise_sd"] = t["gp"]["noise_sd"];
+      if (t.contains("gp") && t["gp"].contains("noise_floor_sd")) f["gp_noise_floor_sd"] = t["gp"]["noise_floor_sd"];
       fits[t.value("name", "")] = f;
     }
     digest["surrogate"] = {{"round", round}, {"fits", fits}};

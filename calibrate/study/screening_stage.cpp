@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include <gsl/gsl_cdf.h>
+
 #include "calibrate/study/pipeline.hpp"
 #include "doe/designs/plackett_burman.hpp"
 #include "doe/regression/anova.hpp"
@@ -122,6 +124,7 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
   for (int j = 0; j < np; ++j) keep[static_cast<std::size_t>(j)] = s.parameters[static_cast<std::size_t>(j)].calibrate;
   const int primary = primary_target(s);
   report["targets"] = nlohmann::json::array();
+  st.run_noise_var_floor.assign(s.targets.size(), 0.0);
   for (std::size_t t = 0; t < s.targets.size(); ++t) {
     const Eigen::VectorXd yt = y.col(static_cast<Eigen::Index>(t));
     nlohmann::json tj = {{"name", s.targets[t].name}, {"metric", s.targets[t].metric}};
@@ -157,6 +160,21 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
       tj["effects"].push_back(ej);
     }
     tj["mean"] = mean;
+    // Run-to-run noise from the effects' error estimate (dummy columns or residual, df_error
+    // degrees of freedom): an orthogonal two-level design of N points, each the mean of r
+    // replicates, has se(effect) = 2 sigma_point / sqrt(N), so sigma_run^2 = r N se^2 / 4. Its
+    // one-sided 95 % lower bound df s^2 / chi2_0.95(df) floors the GP's noise variance in the
+    // surrogate stage, so the GP does not interpolate scatter already measured here (intrinsic
+    // noise from replicates as in stochastic kriging: Ankenman, Nelson & Staum 2010).
+    const double se = a.effects.empty() ? 0.0 : a.effects.front().se;
+    if (std::isfinite(se) && se > 0.0 && a.df_error > 0) {
+      const double n_ok = static_cast<double>(yt.array().isFinite().count());  // runs that finished
+      const double var = static_cast<double>(s.screen.replicates) * n_ok * se * se / 4.0;
+      const double df = static_cast<double>(a.df_error);
+      st.run_noise_var_floor[t] = df * var / gsl_cdf_chisq_Qinv(0.05, df);
+      tj["run_noise_sd"] = std::sqrt(var);
+      tj["run_noise_sd_lower95"] = std::sqrt(st.run_noise_var_floor[t]);
+    }
     if (static_cast<int>(t) == primary) {
       st.screen_mean = mean;
       st.first_order = Eigen::VectorXd::Zero(np);

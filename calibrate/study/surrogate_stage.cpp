@@ -14,6 +14,7 @@
 // leave-one-out predictions, and each solve round a prediction grid of every target's chosen
 // surrogate over the two leading kept factors (largest first-order effect; the others at the
 // chosen point).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -82,8 +83,9 @@ struct TargetFit {
   nlohmann::json report;
 };
 
+// `noise_var_floor`: the screening's lower bound of the run-to-run noise variance (0: none).
 TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen::VectorXd& y,
-                     const std::vector<std::string>& names) {
+                     const std::vector<std::string>& names, double noise_var_floor) {
   TargetFit out;
   nlohmann::json rep = {{"points", y.size()}};
   const double inf = std::numeric_limits<double>::infinity();
@@ -111,12 +113,17 @@ TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen
     try {
       doe::GpOptions o;
       o.seed = s.seed;
+      // The noise variance may not fall below what the screening measured (as a fraction of the
+      // responses' variance, the GP's scale; at most 0.9, where the data are nearly all noise).
+      const double y_var = y.size() > 1 ? (y.array() - y.mean()).square().sum() / static_cast<double>(y.size() - 1) : 0.0;
+      if (noise_var_floor > 0.0 && y_var > 0.0) o.min_noise = std::clamp(noise_var_floor / y_var, o.min_noise, 0.9);
       gp = std::make_shared<doe::GaussianProcess>(doe::GaussianProcess::fit(U, y, o));
       gp_cv = gp->loo_rmse();
       const auto h = gp->hyperparameters();
       rep["gp"] = {{"kernel", "matern52"}, {"length_scales_coded", std::vector<double>(h.length_scales.data(), h.length_scales.data() + h.length_scales.size())},
                    {"signal_sd", std::sqrt(h.signal_variance)}, {"noise_sd", std::sqrt(h.noise_variance)},
-                   {"loo_rmse", gp_cv}};
+                   {"loo_rmse", gp_cv},
+                   {"noise_floor_sd", noise_var_floor > 0.0 ? nlohmann::json(std::sqrt(noise_var_floor)) : nlohmann::json(nullptr)}};
       rep["gp"]["loo_predicted"] = values_of(y - gp->loo_residuals());
     } catch (const std::exception& e) {
       rep["gp"] = {{"error", e.what()}};
@@ -309,7 +316,8 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
     Eigen::MatrixXd U;
     Eigen::VectorXd y;
     gather_surrogate_data(ev, st, static_cast<int>(t), &U, &y);
-    fits.push_back(fit_target(s, U, y, names));
+    const double floor = t < st.run_noise_var_floor.size() ? st.run_noise_var_floor[t] : 0.0;
+    fits.push_back(fit_target(s, U, y, names, floor));
     nlohmann::json fr = fits.back().report;
     fr["name"] = s.targets[t].name;
     Eigen::MatrixXd natural(U.rows(), U.cols());

@@ -316,5 +316,32 @@ TEST(CalibrateCli, AscentSlidesAlongALimit) {
   std::filesystem::remove_all(dir);
 }
 
+// A noisy response (the free drop's rebound depends on the orientation at touch-down): the
+// screening's dummy columns measure the run-to-run noise, and the GP of the surrogate stage may
+// not explain less of the data as noise than the lower 95 % bound of that measurement.
+TEST(CalibrateCli, ScreeningNoiseFloorsTheGp) {
+  const std::string dir = scratch_dir("calibrate-noisy");
+  write_text(dir + "/study.toml", "name = \"noisy\"\nseed = 2\n\n[[target]]\nscene = \"" + source_dir() +
+                                      "/data/scenes/jinong1/free_drop.toml\"\nmetric = \"rebound_height_m\"\n"
+                                      "value = 0.040\n\n[[parameter]]\npath = \"seed_steel.restitution\"\nlow = 0.5\n"
+                                      "high = 0.8\ncalibrate = true\n\n[[parameter]]\npath = \"seed_seed.static_friction\"\n"
+                                      "low = 0.3\nhigh = 0.7\n\n[screen]\nruns = 8\n\n[confirm]\nreplicates = 3\n"
+                                      "tolerance = 0.1\nmax_evaluations = 30\n");
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  const auto& noise = s["stages"]["screen"]["run_noise_sd"]["rebound_height_m"];
+  ASSERT_TRUE(noise["estimate"].is_number()) << s["stages"].dump(1);
+  // Ten drops of this clump scatter by about 16 mm (docs/studies.md): the estimate from 4 df.
+  EXPECT_GT(noise["estimate"].get<double>(), 0.004) << noise.dump();
+  EXPECT_LT(noise["estimate"].get<double>(), 0.04) << noise.dump();
+  EXPECT_LT(noise["lower95"].get<double>(), noise["estimate"].get<double>());
+  const auto& fit = s["stages"]["surrogate"]["fits"]["rebound_height_m"];
+  ASSERT_TRUE(fit.contains("gp_noise_sd")) << fit.dump();
+  EXPECT_DOUBLE_EQ(fit["gp_noise_floor_sd"].get<double>(), noise["lower95"].get<double>());
+  EXPECT_GE(fit["gp_noise_sd"].get<double>(), 0.999 * noise["lower95"].get<double>()) << fit.dump();
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace seedcal::testing
