@@ -117,12 +117,28 @@ PilingResult run_piling(const PilingSpec& spec) {
   double top = 0.0;
   for (std::size_t i = 0; i < sim.spheres().size(); ++i)
     top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
-  // Lift the tube until its lower rim clears the fill by a seed size.
+  // Lift the tube at the set speed until its lower rim clears the highest seed by a seed size
+  // (checked every 10 ms): from then on nothing can touch it, so the tube stops there. The fill
+  // drains as the tube rises, so the rim clears the seeds well below the fill's initial top
+  // (at most top + 20 mm of lift).
+  double seed_size = 0.0;
+  for (const SphereDef& s : spec.seeds.body.spheres)
+    seed_size = std::max(seed_size, 2.0 * (s.offset_m.norm() + s.radius_m));
+  seed_size *= spec.seeds.scale.mean;
   const double lift = top + 0.02;
   const double t0 = sim.time_s();
   sim.walls()[tube_index].motion = std::make_shared<Schedule>(
       std::vector<Schedule::Segment>{{t0, t0 + lift / spec.lift_speed_m_s, Vec3(0, 0, spec.lift_speed_m_s)}});
-  if (sim.failure().status == RunStatus::ok) run_for(sim, lift / spec.lift_speed_m_s);
+  while (sim.failure().status == RunStatus::ok && sim.time_s() < t0 + lift / spec.lift_speed_m_s) {
+    run_for(sim, 0.01);
+    double highest = 0.0;
+    for (std::size_t i = 0; i < sim.spheres().size(); ++i)
+      highest = std::max(highest, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+    if (sim.walls()[tube_index].pose.origin_m.z() > highest + seed_size) break;
+  }
+  res.lift_m = sim.walls()[tube_index].pose.origin_m.z();
+  sim.walls()[tube_index].motion = nullptr;
+  sim.walls()[tube_index].pose.velocity_m_s.setZero();
   SettleResult heap;
   if (sim.failure().status == RunStatus::ok) {
     sc.max_time_s = spec.max_time_s;

@@ -39,6 +39,7 @@ struct PilingResult {
   double heap_radius_m = 0.0, heap_height_m = 0.0;
   std::size_t seeds = 0;
   double foot_radius_m = 0.0;
+  double lift_m = 0.0;  // how far the tube was lifted
   std::vector<std::vector<std::pair<double, double>>> profiles;  // per sector: (r, z)
   std::vector<LineFit> fits;
   std::vector<std::pair<double, double>> fit_ranges;
