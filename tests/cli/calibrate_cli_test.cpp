@@ -63,12 +63,24 @@ std::string target(const std::string& metric, double value) {
   return buf;
 }
 
+// A [[parameter]] block; `extra` adds lines such as "min = 1.0\nmax = 2.0\ncalibrate = true\n".
+std::string parameter(const std::string& path, double low, double high, const std::string& extra = "") {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, "[[parameter]]\npath = \"%s\"\nlow = %.17g\nhigh = %.17g\n", path.c_str(), low, high);
+  return buf + extra + "\n";
+}
+
+// Writes DIR/study.toml and runs `seedcal calibrate` on it into DIR/out.
+CliResult calibrate_study(const std::string& dir, const std::string& study) {
+  write_text(dir + "/study.toml", study);
+  return run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+}
+
 TEST(CalibrateCli, RecoversYoungsModulusFromContactTime) {
   const std::string dir = scratch_dir("calibrate-one");
   const double e0 = 3.3e10;
   const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
-  write_text(dir + "/study.toml", study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(dir, study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
   EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
@@ -103,11 +115,9 @@ TEST(CalibrateCli, JointTargetsIdentifyTwoUnknowns) {
   const std::string dir = scratch_dir("calibrate-joint");
   const double e0 = 4.1e10, rho0 = 2350.0;
   const auto m = impact_metrics(e0, rho0, dir + "/truth");
-  write_text(dir + "/study.toml",
-             study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()) +
-                            target("max_normal_force_n", m["max_normal_force_n"].get<double>()),
-                        0.005));
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(dir, study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+                                                     target("max_normal_force_n", m["max_normal_force_n"].get<double>()),
+                                                 0.005));
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
   EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
@@ -215,8 +225,7 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
 )",
                 source_dir().c_str(), kScene, m["contact_duration_s"].get<double>(), source_dir().c_str(), kScene, force,
                 0.01 * force, source_dir().c_str(), kScene);
-  write_text(dir + "/study.toml", text);
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(dir, text);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
   ASSERT_TRUE(s.contains("model_selection")) << s.dump(1);
@@ -252,11 +261,10 @@ TEST(CalibrateCli, OneParameterNoiseFreeScreening) {
   const std::string dir = scratch_dir("calibrate-single");
   const double e0 = 3.3e10;
   const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
-  write_text(dir + "/study.toml", "name = \"single\"\n" + target("contact_duration_s", m["contact_duration_s"].get<double>()) +
-                                      "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 2.0e10\n"
-                                      "high = 6.0e10\ncalibrate = true\n\n[screen]\nruns = 8\n\n[confirm]\n"
-                                      "replicates = 2\ntolerance = 0.003\nmax_evaluations = 40\n");
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(
+      dir, "name = \"single\"\n" + target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+               parameter("materials.glass.youngs_modulus_pa", 2.0e10, 6.0e10, "calibrate = true\n") +
+               "[screen]\nruns = 8\n\n[confirm]\nreplicates = 2\ntolerance = 0.003\nmax_evaluations = 40\n");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string text = read_text(dir + "/out/summary.json");
   EXPECT_EQ(text.find("NaN"), std::string::npos);
@@ -276,13 +284,11 @@ TEST(CalibrateCli, OneParameterNoiseFreeScreening) {
 TEST(CalibrateCli, UnreachableTargetIsAClearError) {
   const std::string dir = scratch_dir("calibrate-unreachable");
   const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
-  write_text(dir + "/study.toml", "name = \"unreachable\"\n" +
-                                      target("contact_duration_s", 10.0 * m["contact_duration_s"].get<double>()) +
-                                      "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 2.0e10\n"
-                                      "high = 6.0e10\nmin = 1.0e10\nmax = 1.0e11\ncalibrate = true\n\n"
-                                      "[[parameter]]\npath = \"glass_glass.restitution\"\nlow = 0.6\nhigh = 0.95\n"
-                                      "nominal = 0.9\n\n[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\nmax_steps = 12\n");
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(
+      dir, "name = \"unreachable\"\n" + target("contact_duration_s", 10.0 * m["contact_duration_s"].get<double>()) +
+               parameter("materials.glass.youngs_modulus_pa", 2.0e10, 6.0e10, "min = 1.0e10\nmax = 1.0e11\ncalibrate = true\n") +
+               parameter("glass_glass.restitution", 0.6, 0.95, "nominal = 0.9\n") +
+               "[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\nmax_steps = 12\n");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("cannot be reached inside the parameters' min/max"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("materials.glass.youngs_modulus_pa = 1"), std::string::npos) << r.output;
@@ -297,15 +303,12 @@ TEST(CalibrateCli, UnreachableTargetIsAClearError) {
 TEST(CalibrateCli, AscentSlidesAlongALimit) {
   const std::string dir = scratch_dir("calibrate-slide");
   const auto m = impact_metrics(2.0e10, 4000.0, dir + "/truth");
-  write_text(dir + "/study.toml", "name = \"slide\"\nseed = 5\n" +
-                                      target("contact_duration_s", m["contact_duration_s"].get<double>()) +
-                                      "[[parameter]]\npath = \"materials.glass.youngs_modulus_pa\"\nlow = 3.0e10\n"
-                                      "high = 5.0e10\nmin = 5.0e9\nmax = 1.0e11\ncalibrate = true\n\n"
-                                      "[[parameter]]\npath = \"materials.glass.density_kg_m3\"\nlow = 1000.0\n"
-                                      "high = 4000.0\nmin = 1000.0\nmax = 4000.0\ncalibrate = true\n\n"
-                                      "[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\nmax_steps = 12\n\n"
-                                      "[confirm]\nreplicates = 2\ntolerance = 0.01\nmax_evaluations = 60\n");
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(
+      dir, "name = \"slide\"\nseed = 5\n" + target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+               parameter("materials.glass.youngs_modulus_pa", 3.0e10, 5.0e10, "min = 5.0e9\nmax = 1.0e11\ncalibrate = true\n") +
+               parameter("materials.glass.density_kg_m3", 1000.0, 4000.0, "min = 1000.0\nmax = 4000.0\ncalibrate = true\n") +
+               "[screen]\nruns = 8\n\n[ascent]\nstep = 1.0\nmax_steps = 12\n\n"
+               "[confirm]\nreplicates = 2\ntolerance = 0.01\nmax_evaluations = 60\n");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
   EXPECT_EQ(s["stages"]["ascent"]["result"], "target bracketed") << s.dump(1);
@@ -321,13 +324,12 @@ TEST(CalibrateCli, AscentSlidesAlongALimit) {
 // not explain less of the data as noise than the lower 95 % bound of that measurement.
 TEST(CalibrateCli, ScreeningNoiseFloorsTheGp) {
   const std::string dir = scratch_dir("calibrate-noisy");
-  write_text(dir + "/study.toml", "name = \"noisy\"\nseed = 2\n\n[[target]]\nscene = \"" + source_dir() +
-                                      "/data/scenes/jinong1/free_drop.toml\"\nmetric = \"rebound_height_m\"\n"
-                                      "value = 0.040\n\n[[parameter]]\npath = \"seed_steel.restitution\"\nlow = 0.5\n"
-                                      "high = 0.8\ncalibrate = true\n\n[[parameter]]\npath = \"seed_seed.static_friction\"\n"
-                                      "low = 0.3\nhigh = 0.7\n\n[screen]\nruns = 8\n\n[confirm]\nreplicates = 3\n"
-                                      "tolerance = 0.1\nmax_evaluations = 30\n");
-  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
+  const auto r = calibrate_study(
+      dir, "name = \"noisy\"\nseed = 2\n\n[[target]]\nscene = \"" + source_dir() +
+               "/data/scenes/jinong1/free_drop.toml\"\nmetric = \"rebound_height_m\"\nvalue = 0.040\n\n" +
+               parameter("seed_steel.restitution", 0.5, 0.8, "calibrate = true\n") +
+               parameter("seed_seed.static_friction", 0.3, 0.7) +
+               "[screen]\nruns = 8\n\n[confirm]\nreplicates = 3\ntolerance = 0.1\nmax_evaluations = 30\n");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
   const auto& noise = s["stages"]["screen"]["run_noise_sd"]["rebound_height_m"];
