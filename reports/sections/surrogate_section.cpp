@@ -52,7 +52,7 @@ void add_fit(const StudyData& d, Document& doc) {
   Section s{"surrogate-fit", "Surrogate fit: ANOVA and fit statistics", {}};
   Table stats{"fit_statistics", "Fit statistics per solve round (leave-one-out RMSE in response units)",
               {"round", "target", "points", "R2", "adj R2", "pred R2", "quadratic sigma", "quadratic LOO RMSE", "GP noise sd",
-               "GP signal sd", "GP LOO RMSE", "chosen", "rule"}, {}, {}};
+               "GP noise floor sd", "GP signal sd", "GP LOO RMSE", "chosen", "rule"}, {}, {}};
   for (int r = 1; r <= last; ++r) {
     const auto* st = d.stage(std::string("solve_round_") + std::to_string(r));
     if (!st) continue;
@@ -60,13 +60,14 @@ void add_fit(const StudyData& d, Document& doc) {
       const auto q = t.value("quadratic", nlohmann::json::object()), g = t.value("gp", nlohmann::json::object());
       auto get = [](const nlohmann::json& o, const char* k) { return format_value(o.value(k, nlohmann::json())); };
       stats.add_row({std::to_string(r), t.value("name", std::string("?")), get(t, "points"), get(q, "r2"), get(q, "adj_r2"),
-                     get(q, "pred_r2"), get(q, "sigma"), get(q, "loo_rmse"), get(g, "noise_sd"), get(g, "signal_sd"),
+                     get(q, "pred_r2"), get(q, "sigma"), get(q, "loo_rmse"), get(g, "noise_sd"), get(g, "noise_floor_sd"), get(g, "signal_sd"),
                      get(g, "loo_rmse"), t.value("chosen", std::string("n/a")), t.value("choice_rule", std::string("n/a"))});
     }
   }
   stats.notes.push_back("pred R2 = 1 - PRESS / SS_total; the quadratic's LOO RMSE is sqrt(PRESS / n) (Allen 1974), the "
                         "Gaussian process's from R&W eq. 5.12; with the rule \"smaller leave-one-out RMSE\" the surrogate "
-                        "with the smaller one is used to solve for the target.");
+                        "with the smaller one is used to solve for the target. The GP noise floor is the lower 95 % bound of the "
+                        "run-to-run noise the screening measured (none for a deterministic scene).");
   const auto* st = d.stage(std::string("solve_round_") + std::to_string(last));
   const auto& targets = st->value("targets", nlohmann::json::array());
   const auto names = target_names(d);
