@@ -77,6 +77,23 @@ void compare(nlohmann::json& sweep, std::size_t reference, double tolerance) {
 }  // namespace
 
 nlohmann::json tradeoff_study(const TradeoffOptions& o) {
+  // The scene as it stands (overrides applied): its own step fraction and modulus decide whether
+  // the modulus sweep's reference row is a row the step sweep has already run.
+  const SceneFile scene = load_scene_file(o.scene, o.sets);
+  if (scene.doc.contains("dt_s"))
+    throw InputError(o.scene + ": dt_s is set: the step-fraction sweep needs a scene whose step comes from "
+                     "rayleigh_fraction (remove dt_s)");
+  const toml::value* modulus = nullptr;
+  if (scene.doc.contains("materials") && scene.doc.at("materials").contains(o.material) &&
+      scene.doc.at("materials").at(o.material).contains("youngs_modulus_pa"))
+    modulus = &scene.doc.at("materials").at(o.material).at("youngs_modulus_pa");
+  if (!modulus || !(modulus->is_floating() || modulus->is_integer()))
+    throw InputError(o.scene + ": --material " + o.material + ": the scene has no materials." + o.material +
+                     ".youngs_modulus_pa to sweep");
+  auto number = [](const toml::value& v) { return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer()); };
+  const double own_modulus = number(*modulus);
+  const double own_fraction = scene.doc.contains("rayleigh_fraction") ? number(scene.doc.at("rayleigh_fraction")) : 0.2;
+
   std::string metric = o.metric;
   nlohmann::json j = {{"study", "tradeoff"}, {"scene", o.scene}, {"sets", o.sets}, {"repeats", o.repeats},
                       {"seed", o.seed}, {"tolerance", o.tolerance}};
@@ -99,7 +116,18 @@ nlohmann::json tradeoff_study(const TradeoffOptions& o) {
     char set[128], name[64];
     std::snprintf(set, sizeof set, "materials.%s.youngs_modulus_pa=%.17g", o.material.c_str(), e);
     std::snprintf(name, sizeof name, "youngs_modulus_%.3g", e);
-    auto row = run_row(o, set, name, metric, stiff["rows"].empty());
+    nlohmann::json row;
+    const nlohmann::json* same = nullptr;  // the step sweep's row at the scene's own step and modulus
+    if (e == own_modulus)
+      for (const auto& r : dt["rows"])
+        if (r["value"].get<double>() == own_fraction && r["status"] == "ok") same = &r;
+    if (same) {
+      row = *same;
+      row["set"] = set;
+      row["same_runs_as"] = "rayleigh_fraction = " + (*same)["value"].dump();
+    } else {
+      row = run_row(o, set, name, metric, stiff["rows"].empty());
+    }
     row["value"] = e;
     stiff["rows"].push_back(row);
   }

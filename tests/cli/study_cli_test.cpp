@@ -99,6 +99,9 @@ TEST(StudyCli, TradeoffRowsMeasureCostAndChange) {
     EXPECT_EQ(ref["index"]["n"], 2) << ref.dump(1);
     EXPECT_TRUE((*sw)["rows"][1]["relative_change"].is_number()) << sw->dump(1);
   }
+  // The stiffest modulus at the scene's own step (0.2) is the step sweep's 0.2 row: not run twice.
+  EXPECT_EQ(stiff["rows"][0]["same_runs_as"], "rayleigh_fraction = 0.2") << stiff.dump(1);
+  EXPECT_EQ(stiff["rows"][0]["index"], dt["rows"][1]["index"]);
   const double steps_fine = dt["rows"][0]["steps_per_run"].get<double>();
   const double steps_coarse = dt["rows"][1]["steps_per_run"].get<double>();
   EXPECT_NEAR(steps_fine / steps_coarse, 4.0, 0.6) << dt.dump(1);
@@ -113,6 +116,13 @@ TEST(StudyCli, MissingSceneIsBadInput) {
   const auto r = run_cli("study multicontact --free-drop /nonexistent.toml --out " + scratch_dir("study-bad"));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("/nonexistent.toml"), std::string::npos) << r.output;
+}
+
+TEST(StudyCli, TradeoffMaterialMustBeInTheScene) {
+  const auto r = run_cli("study tradeoff --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml --material cork" +
+                         " --out " + scratch_dir("study-bad-material"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("materials.cork.youngs_modulus_pa"), std::string::npos) << r.output;
 }
 
 }  // namespace
