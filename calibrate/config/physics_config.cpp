@@ -35,6 +35,10 @@ PhysicsConfig read_physics(TomlReader& root) {
     parse_normal_model(model, cfg.physics.contact.normal);
     const std::string rolling = c->choice("rolling", {"none", "cdt", "epsd"}, "none");
     parse_rolling_model(rolling, cfg.physics.contact.rolling);
+    // CDT lever arm: "sphere" (the contacting sphere's radius) or "centre_of_mass" (EDEM's
+    // standard rolling friction: the contact point's distance from the body's centre of mass).
+    cfg.physics.contact.cdt_lever_from_centre_of_mass =
+        c->choice("rolling_lever", {"sphere", "centre_of_mass"}, "sphere") == "centre_of_mass";
     cfg.physics.contact.clip_attractive = c->boolean("clip_attractive", false);
     cfg.physics.contact.epsd_damping_ratio =
         c->number("epsd_damping_ratio", Range::closed(0.0, 1.0), 0.3);

@@ -15,6 +15,13 @@ struct ContactOptions {
   // with the force unclipped the set restitution comes out exactly; clipping raises it (for
   // e = 0.45 to about 0.51, see tests/physics/restitution_test.cpp).
   bool clip_attractive = false;
+  // CDT lever arm R_i. false: the contacting sphere's radius less half the overlap (the local
+  // radius of curvature; for single spheres both choices are the same). true: the distance from
+  // the contact point to the body's centre of mass, as EDEM's standard rolling friction defines
+  // R_i ("the distance of the contact point from the center of mass", EDEM Creator physics guide,
+  // Standard Rolling Friction Model): for a multi-sphere seed the outer spheres' contacts get a
+  // longer lever than their own radius.
+  bool cdt_lever_from_centre_of_mass = false;
   // EPSD (type C) viscous damping ratio of the rolling dashpot, Ai et al. (2011) eq. 17; 0.3 is
   // their recommended value.
   double epsd_damping_ratio = 0.3;

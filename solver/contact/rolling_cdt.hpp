@@ -5,7 +5,10 @@
 //   tau_i = -mu_r |Fn| R_i w_i / |w_i|
 //
 // with w_i the angular velocity of body i itself (not the relative spin) and R_i the distance from
-// the contact point to the centre of the contacting sphere. It is applied to each body separately
+// the contact point to the centre of the contacting sphere, or, with
+// ContactOptions::cdt_lever_from_centre_of_mass, to the body's centre of mass (EDEM's definition:
+// "the distance of the contact point from the center of mass"; the same for a single sphere, longer
+// for a clump's outer spheres). It is applied to each body separately
 // (it is not an action-reaction pair). Known weakness: at rest w/|w| has no limit, so a resting
 // particle keeps a small spin jitter of order mu_r |Fn| R dt / I; the EPSD model does not
 // (measured in tests/physics/rolling_test.cpp).

@@ -30,6 +30,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const double dt = s.options_.dt_s;
   const bool clip = s.options_.contact.clip_attractive;
   const double eta_r = s.options_.contact.epsd_damping_ratio;
+  const bool lever_com = s.options_.contact.cdt_lever_from_centre_of_mass;
   BodyState& B = s.bodies_;
   // Dashpots use the predicted end-of-step velocities, springs the half-step ones
   // (contact/hertz_mindlin.hpp).
@@ -140,8 +141,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         T[bi] += rci.cross(cf.force_on_i_n);
         T[bj] -= rcj.cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
-          T[bi] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, ri - 0.5 * overlap, spin_dir[bi]);
-          T[bj] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, rj - 0.5 * overlap, spin_dir[bj]);
+          T[bi] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, lever_com ? rci.norm() : ri - 0.5 * overlap, spin_dir[bi]);
+          T[bj] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, lever_com ? rcj.norm() : rj - 0.5 * overlap, spin_dir[bj]);
         } else if constexpr (RM == RollingModel::epsd) {
           const double ii = B.principal_inertia[bi].mean() + mi * rci.squaredNorm();
           const double ij = B.principal_inertia[bj].mean() + mj * rcj.squaredNorm();
@@ -209,7 +210,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         if constexpr (RM == RollingModel::cdt) {
           // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
           // plate feels it as a torque about its origin).
-          const Vec3 tau = cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, hit.distance, spin_dir[b]);
+          const double lever = lever_com ? rc.norm() : hit.distance;
+          const Vec3 tau = cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, lever, spin_dir[b]);
           T[b] += tau;
           WT[ww[a]] -= tau;
         } else if constexpr (RM == RollingModel::epsd) {

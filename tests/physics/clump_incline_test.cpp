@@ -11,6 +11,10 @@
 //    without slip with a = g (sin(theta) - mu_r cos(theta) R'/r) / (1 + I/(m r^2)) (torque balance
 //    about the contact line, as in tests/physics/rolling_test.cpp); for two equal spheres I about
 //    their common axis is 2 x 2/5 m_s r^2 = 2/5 m r^2, so a = 5/7 g (sin - mu_r cos R'/r).
+//  - The same with EDEM's lever (contact.rolling_lever = "centre_of_mass"): each contact point lies
+//    below its sphere's centre, a half-spacing s = 2.5 mm off the centre of mass, so the lever is
+//    L = sqrt(R'^2 + s^2) = 1.6 R' and the body is held while tan(theta) < mu_r L / R', rolling
+//    above at a = 5/7 g (sin - mu_r cos L / r).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,7 +32,8 @@ constexpr double kR = 0.002;  // sphere radius, m (a seed-sized clump)
 
 // A clump of `spheres` (lowest point on z = 0) on a steel-like plane, seed-like material (the
 // paper's Table 6 Jinong 1 values), gravity tilted by theta about y (downhill is +x).
-Simulation incline(const std::vector<SphereXYZR>& spheres, double mu_s, double mu_r, double theta_deg) {
+Simulation incline(const std::vector<SphereXYZR>& spheres, double mu_s, double mu_r, double theta_deg,
+                   bool lever_from_centre_of_mass = false) {
   testing::MaterialSpec m;
   m.density_kg_m3 = 1340.0;
   m.youngs_modulus_pa = 1.65e8;
@@ -46,6 +51,7 @@ Simulation incline(const std::vector<SphereXYZR>& spheres, double mu_s, double m
   SimulationOptions opt;
   opt.gravity_m_s2 = Vec3(kG * std::sin(th), 0.0, -kG * std::cos(th));
   opt.contact.rolling = RollingModel::cdt;
+  opt.contact.cdt_lever_from_centre_of_mass = lever_from_centre_of_mass;
   opt.dt_s = 1e-6;
   Simulation probe(table, opt);
   probe.add_body(b);
@@ -121,6 +127,30 @@ TEST(ClumpIncline, DumbbellRollsAboveItsAngleAtCdtRate) {
   EXPECT_NEAR(a / theory, 1.0, 0.01);
   // Rolling without slip about y: w_y r' = v_x.
   EXPECT_NEAR(sim.bodies().angular_velocity[0].y() * lever / sim.bodies().velocity_m_s[0].x(), 1.0, 0.01);
+}
+
+// EDEM's lever: at 7 deg the sphere lever would let the dumbbell roll (tan 7 deg = 0.123 > 0.1),
+// the centre-of-mass lever (1.6 times longer) holds it.
+TEST(ClumpIncline, CentreOfMassLeverHoldsWhereTheSphereLeverRolls) {
+  const double mu_r = 0.1;
+  Simulation held = incline(dumbbell(), 0.5, mu_r, 7.0, true);
+  double moved = 0.0;
+  downhill_acceleration(held, 0.05, 0.2, &moved);
+  EXPECT_LT(std::abs(moved), 1e-5) << "centre-of-mass lever";
+  Simulation rolls = incline(dumbbell(), 0.5, mu_r, 7.0, false);
+  downhill_acceleration(rolls, 0.05, 0.2, &moved);
+  EXPECT_GT(moved, 1e-4) << "sphere lever";
+}
+
+TEST(ClumpIncline, CentreOfMassLeverRollsAtItsRate) {
+  const double mu_r = 0.1, th = 12.0 * std::numbers::pi / 180.0;
+  Simulation sim = incline(dumbbell(), 0.5, mu_r, 12.0, true);
+  const double a = downhill_acceleration(sim, 0.05, 0.1);
+  const double h = sim.bodies().position_m[0].z();  // R': the centre of mass is at the spheres' height
+  const double lever = std::sqrt(h * h + 0.0025 * 0.0025);
+  const double theory = 5.0 / 7.0 * kG * (std::sin(th) - mu_r * std::cos(th) * lever / kR);
+  std::printf("dumbbell, centre-of-mass lever, 12 deg: a = %.5f m/s2, theory %.5f (L %.4e m)\n", a, theory, lever);
+  EXPECT_NEAR(a / theory, 1.0, 0.02);
 }
 
 }  // namespace
