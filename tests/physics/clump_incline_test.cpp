@@ -52,14 +52,7 @@ Simulation incline(const std::vector<SphereXYZR>& spheres, double mu_s, double m
   opt.gravity_m_s2 = Vec3(kG * std::sin(th), 0.0, -kG * std::cos(th));
   opt.contact.rolling = RollingModel::cdt;
   opt.contact.cdt_lever_from_centre_of_mass = lever_from_centre_of_mass;
-  opt.dt_s = 1e-6;
-  Simulation probe(table, opt);
-  probe.add_body(b);
-  opt.dt_s = 0.2 * probe.rayleigh_time_step_s();
-  Simulation sim(table, opt);
-  sim.add_body(b);
-  sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
-  return sim;
+  return testing::body_on_plane(table, opt, b);
 }
 
 std::vector<SphereXYZR> tripod() {

@@ -32,15 +32,7 @@ Simulation rolling_sphere(RollingModel model, double mu_r, double v0) {
   b.angular_velocity_rad_s = Vec3(0, v0 / kR, 0);  // w x (0,0,-r) = -v: no slip
   SimulationOptions opt;
   opt.contact.rolling = model;
-  SimulationOptions probe_opt = opt;
-  probe_opt.dt_s = 1e-6;  // any; only the Rayleigh step is read
-  Simulation probe(table, probe_opt);
-  probe.add_body(b);
-  opt.dt_s = 0.2 * probe.rayleigh_time_step_s();
-  Simulation sim(table, opt);
-  sim.add_body(b);
-  sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
-  return sim;
+  return testing::body_on_plane(table, opt, b);
 }
 
 TEST(Rolling, CdtDecelerationMatchesTheory) {

@@ -39,6 +39,20 @@ inline Wall plane_wall(const Vec3& point, const Vec3& normal) {
   return w;
 }
 
+// One body resting on (or rolling over) the plane z = 0, stepped at `fraction` of its Rayleigh
+// step (the options' dt_s is replaced).
+inline Simulation body_on_plane(const InteractionTable& table, SimulationOptions opt, const BodyDef& body,
+                                double fraction = 0.2) {
+  opt.dt_s = 1e-6;  // any; only the Rayleigh step is read
+  Simulation probe(table, opt);
+  probe.add_body(body);
+  opt.dt_s = fraction * probe.rayleigh_time_step_s();
+  Simulation sim(table, opt);
+  sim.add_body(body);
+  sim.add_wall(plane_wall(Vec3::Zero(), Vec3::UnitZ()));
+  return sim;
+}
+
 // Effective modulus of two materials: 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.
 inline double e_star(double e1, double nu1, double e2, double nu2) {
   return 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
