@@ -74,5 +74,63 @@ TEST(ReportCli, StudyWritesTheReportAndReportRendersItAgain) {
   fs::remove_all(dir);
 }
 
+// A `seedcal study` directory (KIND.json files, no study store): `seedcal report DIR` renders the
+// studies report, one section per study with its table as CSV and its plot as inline SVG; the
+// paper's numbers stand beside seedcal's. The JSON here has the shape the study commands write.
+TEST(ReportCli, StudyDirectoryGetsTheStudiesReport) {
+  const std::string dir = scratch_dir("report-studies");
+  write_text(dir + "/multicontact.json", R"({"study": "multicontact", "repeats": 3, "sets": [], "seed": 1,
+    "free_drop": {"hertz_mindlin": {"rebound_height_m": {"mean": 0.035, "sd": 0.009, "n": 3, "samples": [0.03, 0.035, 0.04]},
+                                    "contact_points": {"mean": 4.0, "sd": 1.0, "n": 3, "samples": [3, 4, 5]}},
+                  "hmnr": {"rebound_height_m": {"mean": 0.055, "sd": 0.008, "n": 3, "samples": [0.05, 0.055, 0.06]},
+                           "contact_points": {"mean": 4.0, "sd": 1.0, "n": 3, "samples": [3, 4, 5]}},
+                  "rebound_relative_difference": 0.571,
+                  "paper": {"hertz_mindlin_rebound_height_m": 0.0415, "hertz_mindlin_sd_m": 0.00836,
+                            "hmnr_rebound_height_m": 0.058, "hmnr_sd_m": 0.00676, "note": "188 spheres"}}})");
+  write_text(dir + "/stiffness.json", R"({"study": "stiffness", "repeats": 2, "paper": "Figure 26",
+    "rows": [{"youngs_modulus_pa": 1.65e6, "status": "failed", "failure": {"message": "deep overlap: youngs_modulus_pa"},
+              "contact_points": {"mean": null, "sd": null, "n": 0, "samples": []},
+              "rebound_height_m": {"mean": null, "sd": null, "n": 0, "samples": []}},
+             {"youngs_modulus_pa": 1.65e7, "status": "ok", "contact_points": {"mean": 7.0, "sd": 1.8, "n": 2, "samples": [6, 8]},
+              "rebound_height_m": {"mean": 0.0525, "sd": 0.01, "n": 2, "samples": [0.045, 0.06]}},
+             {"youngs_modulus_pa": 1.65e8, "status": "ok", "contact_points": {"mean": 4.1, "sd": 1.0, "n": 2, "samples": [3, 5]},
+              "rebound_height_m": {"mean": 0.0551, "sd": 0.0085, "n": 2, "samples": [0.05, 0.06]}}],
+    "contact_points_fall_with_E": true, "rebound_rises_with_E": true})");
+  write_text(dir + "/tradeoff.json", R"({"study": "tradeoff", "scene": "bulk_density.toml", "sets": ["fidelity=quick"], "repeats": 3,
+    "tolerance": 0.05, "metric": "bulk_density_kg_m3", "sweeps": [
+      {"parameter": "rayleigh_fraction", "reference": 0.05, "cheapest_within_tolerance": 0.2, "rows": [
+        {"value": 0.05, "index": {"mean": 688.7, "sd": 7.4, "n": 3}, "relative_change": 0.0, "significant": false,
+         "cpu_seconds_per_run": 136.6, "steps_per_run": 491389, "speedup": 1.0, "within_tolerance": true, "status": "ok"},
+        {"value": 0.2, "index": {"mean": 683.7, "sd": 9.4, "n": 3}, "relative_change": -0.0072, "significant": false,
+         "cpu_seconds_per_run": 31.5, "steps_per_run": 115955, "speedup": 4.34, "within_tolerance": true, "status": "ok"},
+        {"value": 0.4, "index": {"mean": null, "sd": null, "n": 0}, "relative_change": null, "significant": null,
+         "cpu_seconds_per_run": null, "steps_per_run": null, "speedup": null, "within_tolerance": false, "status": "refused",
+         "failure": {"message": "use rayleigh_fraction <= 0.2585"}}]},
+      {"parameter": "materials.seed.youngs_modulus_pa", "reference": 1.65e8, "cheapest_within_tolerance": 1.65e6, "rows": [
+        {"value": 1.65e8, "index": {"mean": 683.7, "sd": 9.4, "n": 3}, "relative_change": 0.0, "significant": false,
+         "cpu_seconds_per_run": 31.5, "steps_per_run": 115955, "speedup": 1.0, "within_tolerance": true, "status": "ok",
+         "same_runs_as": "rayleigh_fraction = 0.2"},
+        {"value": 1.65e6, "index": {"mean": 704.3, "sd": 6.7, "n": 3}, "relative_change": 0.030, "significant": true,
+         "cpu_seconds_per_run": 7.3, "steps_per_run": 15506, "speedup": 4.72, "within_tolerance": true, "status": "ok"}]}]})");
+  const auto r = run_cli("report " + dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string html = read_text(dir + "/report.html"), md = read_text(dir + "/report.md");
+  for (const char* heading : {"Multi-contact study: Hertz-Mindlin (HM) against HMNR",
+                              "Stiffness study: contact points and rebound height against E", "Speed against accuracy"}) {
+    EXPECT_NE(html.find(std::string("<h2>") + heading + "</h2>"), std::string::npos) << heading;
+    EXPECT_NE(md.find(std::string("## ") + heading), std::string::npos) << heading;
+  }
+  for (const char* plot : {"multicontact_drops", "stiffness", "tradeoff"})
+    EXPECT_NE(read_text(dir + "/report/" + std::string(plot) + ".svg").find("<svg"), std::string::npos) << plot;
+  EXPECT_EQ(count(html, "<svg"), 3u);
+  for (const char* csv : {"multicontact", "stiffness", "tradeoff_rayleigh_fraction", "tradeoff_materials_seed_youngs_modulus_pa"})
+    EXPECT_TRUE(fs::exists(dir + "/report/" + std::string(csv) + ".csv")) << csv;
+  EXPECT_NE(read_text(dir + "/report/multicontact.csv").find("58"), std::string::npos);  // the paper's HMNR mean, mm
+  EXPECT_NE(read_text(dir + "/report/tradeoff_rayleigh_fraction.csv").find("refused: use rayleigh_fraction"), std::string::npos);
+  EXPECT_FALSE(has_nan(html));
+  EXPECT_FALSE(has_nan(md));
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace seedcal::testing

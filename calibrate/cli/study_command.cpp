@@ -1,7 +1,8 @@
 // `seedcal study multicontact|stiffness|moisture --out DIR`: the paper's section 4 studies
 // (calibrate/studies/paper_studies.hpp, docs/studies.md), and `seedcal study tradeoff`: speed
 // against accuracy of one scene (calibrate/studies/tradeoff_study.hpp). Writes DIR/KIND.json
-// (with seed, options and version) and DIR/KIND.csv; prints the JSON.
+// (with seed, options and version) and DIR/KIND.csv, prints the JSON, and renders DIR/report.html
+// and report.md of every study in DIR (reports/studies_report.hpp).
 #include <filesystem>
 #include <iostream>
 
@@ -10,6 +11,7 @@
 #include "calibrate/io/atomic_file.hpp"
 #include "calibrate/studies/paper_studies.hpp"
 #include "calibrate/studies/tradeoff_study.hpp"
+#include "reports/studies_report.hpp"
 
 namespace seedcal {
 namespace {
@@ -26,11 +28,13 @@ struct TradeoffArgs {
   std::string out = "out/tradeoff";
 };
 
+// KIND.json and KIND.csv, then the report of every study in the directory.
 void write_study(const std::string& kind, const nlohmann::json& j, const std::string& csv, const std::string& out) {
   std::filesystem::create_directories(out);
   write_json_atomic(out + "/" + kind + ".json", j);
   write_file_atomic(out + "/" + kind + ".csv", csv);
   std::cout << j.dump(2) << "\n";
+  reports::render_studies_report(out);
 }
 
 void finish(const std::string& kind, nlohmann::json j, const StudyArgs& a, const GlobalOptions& g) {

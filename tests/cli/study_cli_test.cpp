@@ -16,6 +16,7 @@ nlohmann::json run_study(const std::string& args, const std::string& dir, const 
   const auto r = run_cli("study " + args + " --out " + dir + " --threads 1");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir + "/" + kind + ".csv"));
+  EXPECT_NE(read_text(dir + "/report.html").find("<h2>"), std::string::npos) << "no studies report";
   return nlohmann::json::parse(read_text(dir + "/" + kind + ".json"));
 }
 
