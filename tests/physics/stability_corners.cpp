@@ -129,15 +129,42 @@ double depth_below_centre(const BodyDef& b, const Quat& q) {
 
 bool finite(const Vec3& v) { return std::isfinite(v.sum()); }
 
-void refuse(Outcome& o, const SettingError& e) {
-  o.verdict = Verdict::refused;
-  o.refused_key = e.key();
-  o.message = e.what();
+// Runs a scene (`run` returns its result); a refused setting (SettingError) sets the verdict and
+// returns false. Otherwise the step, step count and stop reason are copied into `o`.
+template <class Result, class Run>
+bool run_or_refuse(Outcome& o, Result& r, Run&& run) {
+  try {
+    r = run();
+  } catch (const SettingError& e) {
+    o.verdict = Verdict::refused;
+    o.refused_key = e.key();
+    o.message = e.what();
+    return false;
+  }
+  o.dt_s = r.run.dt_s;
+  o.steps = r.run.steps;
+  o.stop_reason = r.run.stop_reason;
+  return true;
 }
 
-void stop(Outcome& o, const RunReport& r) {
+// True (with the verdict set) when a guard stopped the run.
+bool stopped(Outcome& o, const RunReport& r) {
+  if (r.failure.status == RunStatus::ok) return false;
   o.verdict = Verdict::stopped;
   o.message = r.failure.message;
+  return true;
+}
+
+// The verdict of a finished run: a bad index (`why` not empty) first, then an energy gain beyond
+// the bound ("<energy> rose to X x <reference>").
+void judge(Outcome& o, const std::string& why, const std::string& energy, const std::string& reference) {
+  if (!why.empty()) {
+    o.verdict = Verdict::bad_index;
+    o.message = why;
+  } else if (o.max_energy_ratio > 1.0 + kEnergyGainBound) {
+    o.verdict = Verdict::energy_gain;
+    o.message = energy + " rose to " + std::to_string(o.max_energy_ratio) + " x " + reference;
+  }
 }
 
 }  // namespace
@@ -162,22 +189,14 @@ Outcome impact(const Corner& c, StepChoice step, double speed_m_s, double gap) {
   const double ke0 = 0.5 * b.mass_kg * speed_m_s * speed_m_s;
   double ke_max = 0.0;
   ImpactResult r;
-  try {
-    r = run_impact(spec, [&](const Simulation& sim) { ke_max = std::max(ke_max, sim.kinetic_energy_j()); });
-  } catch (const SettingError& e) {
-    refuse(o, e);
+  if (!run_or_refuse(o, r, [&] {
+        return run_impact(spec, [&](const Simulation& sim) { ke_max = std::max(ke_max, sim.kinetic_energy_j()); });
+      }))
     return o;
-  }
-  o.dt_s = r.run.dt_s;
-  o.steps = r.run.steps;
-  o.stop_reason = r.run.stop_reason;
   o.contact_time_s = r.contact_duration_s;
   o.steps_per_contact = r.run.dt_s > 0.0 ? tc / r.run.dt_s : 0.0;
   o.max_energy_ratio = ke_max / ke0;
-  if (r.run.failure.status != RunStatus::ok) {
-    stop(o, r.run);
-    return o;
-  }
+  if (stopped(o, r.run)) return o;
   const BodyFinalState& f = r.final_states.at(0);
   o.restitution_out = f.velocity_m_s.z() / speed_m_s;
   std::ostringstream why;
@@ -188,13 +207,7 @@ Outcome impact(const Corner& c, StepChoice step, double speed_m_s, double gap) {
     why << "no contact was recorded";
   else if (c.shape == Shape::sphere && !(o.restitution_out >= 0.0 && o.restitution_out <= 1.0 + kEnergyGainBound))
     why << "restitution " << o.restitution_out << " outside [0, 1]";
-  if (!why.str().empty()) {
-    o.verdict = Verdict::bad_index;
-    o.message = why.str();
-  } else if (o.max_energy_ratio > 1.0 + kEnergyGainBound) {
-    o.verdict = Verdict::energy_gain;
-    o.message = "kinetic energy rose to " + std::to_string(o.max_energy_ratio) + " x the initial";
-  }
+  judge(o, why.str(), "kinetic energy", "the initial");
   return o;
 }
 
@@ -209,21 +222,10 @@ Outcome free_drop(const Corner& c, StepChoice step, double drop_height_m) {
   spec.random_orientation = c.shape != Shape::sphere && c.shape != Shape::ratio20;
   spec.seed = 1;
   FreeDropResult r;
-  try {
-    r = run_free_drop(spec);
-  } catch (const SettingError& e) {
-    refuse(o, e);
-    return o;
-  }
-  o.dt_s = r.run.dt_s;
-  o.steps = r.run.steps;
-  o.stop_reason = r.run.stop_reason;
+  if (!run_or_refuse(o, r, [&] { return run_free_drop(spec); })) return o;
   o.max_energy_ratio = r.max_energy_ratio;
   o.restitution_out = r.impact_speed_m_s > 0.0 ? r.rebound_speed_m_s / r.impact_speed_m_s : 0.0;
-  if (r.run.failure.status != RunStatus::ok) {
-    stop(o, r.run);
-    return o;
-  }
+  if (stopped(o, r.run)) return o;
   std::ostringstream why;
   if (!std::isfinite(r.rebound_height_m) || !std::isfinite(o.restitution_out))
     why << "rebound height or restitution not finite";
@@ -231,13 +233,7 @@ Outcome free_drop(const Corner& c, StepChoice step, double drop_height_m) {
     why << "no contact point recorded";
   else if (r.rebound_height_m < 0.0 || r.rebound_height_m > drop_height_m * (1.0 + kEnergyGainBound))
     why << "rebound height " << r.rebound_height_m << " m outside [0, drop height]";
-  if (!why.str().empty()) {
-    o.verdict = Verdict::bad_index;
-    o.message = why.str();
-  } else if (o.max_energy_ratio > 1.0 + kEnergyGainBound) {
-    o.verdict = Verdict::energy_gain;
-    o.message = "energy rose to " + std::to_string(o.max_energy_ratio) + " x the release energy";
-  }
+  judge(o, why.str(), "energy", "the release energy");
   return o;
 }
 
@@ -252,19 +248,7 @@ Outcome bed(const Corner& c, StepChoice step, double container_m, double max_tim
   spec.max_time_s = max_time_s;
   spec.seed = 1;
   BulkDensityResult r;
-  try {
-    r = run_bulk_density(spec);
-  } catch (const SettingError& e) {
-    refuse(o, e);
-    return o;
-  }
-  o.dt_s = r.run.dt_s;
-  o.steps = r.run.steps;
-  o.stop_reason = r.run.stop_reason;
-  if (r.run.failure.status != RunStatus::ok) {
-    stop(o, r.run);
-    return o;
-  }
+  if (!run_or_refuse(o, r, [&] { return run_bulk_density(spec); }) || stopped(o, r.run)) return o;
   o.restitution_out = r.solid_fraction;  // the bed's index, reported in the same slot
   // A random packing of equal spheres or seeds has a solid fraction of 0.55-0.64; a small box
   // (three seeds across) and the strike-off by centroid widen that to (0.2, 0.8).
