@@ -15,6 +15,7 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   spec.time_step = phys.time_step;
   spec.threads = 1;
   spec.seed = ctx.seed;
+  spec.observer = ctx.observer;
   const ParticleConfig particle = read_particle(root, phys, ctx.config_path);
   spec.body = particle.body;
   if (auto fd = root.table("free_drop")) {

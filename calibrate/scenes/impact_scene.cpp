@@ -22,6 +22,7 @@ nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx) {
   spec.duration_s = root.number("duration_s", Range::left_open(0.0, 1e4));
   spec.threads = ctx.threads;
   spec.seed = ctx.seed;
+  spec.observer = ctx.observer;
 
   const Range coord = Range::closed(-1e3, 1e3);
   const Range speed = Range::closed(-1e4, 1e4);

@@ -36,7 +36,7 @@ SceneFile load_scene_file(const std::string& path, const std::vector<std::string
 
 nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir) {
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-  SceneContext ctx{f.path, out_dir, threads, seed};
+  SceneContext ctx{f.path, out_dir, threads, seed, {}};
   try {
     return run_repeated(*f.runner, f.doc, f.path, ctx, repeats > 0 ? repeats : f.repeats);
   } catch (const SettingError& e) {

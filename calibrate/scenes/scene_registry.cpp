@@ -1,10 +1,15 @@
 #include "calibrate/scenes/scene_registry.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <gsl/gsl_statistics_double.h>
+
+#include "calibrate/cli/version_string.hpp"
+#include "calibrate/config/output_config.hpp"
+#include "calibrate/output/trajectory_h5.hpp"
 
 namespace seedcal {
 
@@ -81,9 +86,29 @@ nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
     diag->file = config_path;
     TomlReader root(doc, "", diag);
     root.integer("repeats", 1, 1000, 1);
+    const OutputConfig output = read_output(root);
     SceneContext c = ctx;
     c.seed = ctx.seed + static_cast<std::uint64_t>(k);
+    // The trajectory of the first run (its seed is the one metrics.json's provenance names). The
+    // writer finishes (writes the XDMF) when it goes out of scope, also when the runner throws.
+    std::optional<TrajectoryWriter> trajectory;
+    if (output.trajectory && k == 0 && !ctx.out_dir.empty()) {
+      const std::string kind =
+          doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
+      trajectory.emplace(ctx.out_dir,
+                         TrajectoryProvenance{version_string(), kind, config_path, toml::format(doc),
+                                              c.seed, ctx.threads},
+                         output.trajectory_interval_s);
+      c.observer = trajectory->observer();
+    }
     runs.push_back(runner(root, c));
+    if (trajectory) {
+      trajectory->finish();
+      runs.back()["trajectory"] = {{"h5", TrajectoryWriter::kH5Name},
+                                   {"xdmf", TrajectoryWriter::kXdmfName},
+                                   {"frames", trajectory->frames()},
+                                   {"interval_s", trajectory->interval_s()}};
+    }
     remove_non_finite(runs.back());
     runs.back()["seed"] = c.seed;
     if (runs.back().value("status", "ok") != "ok") break;  // a failed run ends the series

@@ -18,6 +18,7 @@ struct SceneContext {
   std::string out_dir;  // where the scene may write extra files (CSV, pictures); may be empty
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // the run's frames ([output] trajectory = true); runners pass it on
 };
 
 using SceneRunner = std::function<nlohmann::json(TomlReader& root, const SceneContext& ctx)>;
@@ -27,7 +28,9 @@ const std::map<std::string, SceneRunner>& scene_registry();
 // Runs a scene `repeats` times with seeds seed, seed + 1, ... (a fresh config read each time) and
 // aggregates: the index (named by the runner's "index_key") becomes the mean, with
 // "<index>_sd" (sample standard deviation) and "<index>_samples"; cpu_seconds, wall_seconds and
-// steps are summed; every run's own metrics are kept under "runs".
+// steps are summed; every run's own metrics are kept under "runs". It reads the [output] table:
+// with ctx.out_dir set, `trajectory = true` records the first run's trajectory there
+// (output/trajectory_h5.hpp) and its metrics gain "trajectory" (files, frames, interval).
 nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
                             const std::string& config_path, const SceneContext& ctx, int repeats);
 

@@ -14,6 +14,7 @@ void fill_seed_spec(Spec& spec, const SeedSceneConfig& cfg, const SceneContext& 
   spec.seeds = cfg.seeds;
   spec.threads = ctx.threads;
   spec.seed = ctx.seed;
+  spec.observer = ctx.observer;
 }
 
 inline void add_spheres(SideView& view, const std::vector<std::vector<std::pair<Vec3, double>>>& bodies) {

@@ -18,56 +18,10 @@ constexpr int kFormatVersion = 1;
 
 // ---- small HDF5 helpers ---------------------------------------------------------------------
 
-h5::Handle string_type() {
-  h5::Handle t(H5Tcopy(H5T_C_S1), H5Tclose, "create a string type");
-  h5::check(H5Tset_size(t, H5T_VARIABLE), "set a variable string size");
-  h5::check(H5Tset_cset(t, H5T_CSET_UTF8), "set UTF-8");
-  return t;
-}
-
-void write_string_attr(hid_t obj, const char* name, const std::string& value) {
-  h5::Handle type = string_type();
-  h5::Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar space");
-  h5::Handle attr(H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-                  std::string("create attribute ") + name);
-  const char* p = value.c_str();
-  h5::check(H5Awrite(attr, type, &p), std::string("write attribute ") + name);
-}
-
-std::string read_string_attr(hid_t obj, const char* name) {
-  h5::Handle attr(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
-  h5::Handle type = string_type();
-  char* p = nullptr;
-  h5::check(H5Aread(attr, type, &p), std::string("read attribute ") + name);
-  std::string s = p ? p : "";
-  H5free_memory(p);
-  return s;
-}
-
-void write_strings(hid_t group, const char* name, const std::vector<std::string>& values) {
-  const hsize_t n = values.size();
-  h5::Handle type = string_type();
-  h5::Handle space(H5Screate_simple(1, &n, nullptr), H5Sclose, "create a data space");
-  h5::Handle set(H5Dcreate2(group, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 H5Dclose, std::string("create dataset ") + name);
-  std::vector<const char*> ptrs;
-  for (const auto& v : values) ptrs.push_back(v.c_str());
-  if (n > 0) h5::check(H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), std::string("write ") + name);
-}
-
-std::vector<std::string> read_strings(hid_t group, const char* name) {
-  h5::Handle set(H5Dopen2(group, name, H5P_DEFAULT), H5Dclose, std::string("open dataset ") + name);
-  h5::Handle space(H5Dget_space(set), H5Sclose, "get a data space");
-  hsize_t n = 0;
-  H5Sget_simple_extent_dims(space, &n, nullptr);
-  std::vector<char*> ptrs(n, nullptr);
-  h5::Handle type = string_type();
-  if (n > 0) h5::check(H5Dread(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), std::string("read ") + name);
-  std::vector<std::string> out;
-  for (char* p : ptrs) out.emplace_back(p ? p : "");
-  if (n > 0) H5Dvlen_reclaim(type, space, H5P_DEFAULT, ptrs.data());
-  return out;
-}
+using h5::read_string_attr;
+using h5::read_strings;
+using h5::write_string_attr;
+using h5::write_strings;
 
 template <class T>
 void write_numbers(hid_t group, const char* name, const std::vector<T>& values, hid_t mem_type) {

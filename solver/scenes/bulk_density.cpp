@@ -23,7 +23,7 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
                     describe_rig({{"container_m x", c.x()}, {"y", c.y()}, {"z", c.z()},
                                   {"overfill", spec.overfill}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
-                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+                 seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
   Wall box;
   box.name = "container";
   box.shape = std::make_shared<BoxShape>(Vec3(c.x(), c.y(), c.z() + collar), true);

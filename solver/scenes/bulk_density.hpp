@@ -25,6 +25,7 @@ struct BulkDensitySpec {
   double max_time_s = 3.0;
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct BulkDensityResult {

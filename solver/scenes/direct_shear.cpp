@@ -25,7 +25,7 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
                     describe_rig({{"diameter_m", spec.diameter_m},
                                   {"sample_height_m", spec.sample_height_m}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
-                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+                 seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
 
   // Lower ring with its floor (fixed); upper ring from mid-height up through the pour guide.
   Wall lower;

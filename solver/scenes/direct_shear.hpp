@@ -38,6 +38,7 @@ struct DirectShearSpec {
   double failure_displacement_fraction = 0.1;  // peak searched up to this x the diameter
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct ShearSample {

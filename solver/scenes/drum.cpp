@@ -38,7 +38,7 @@ DrumResult run_drum(const DrumSpec& spec) {
                                   {"depth_m", spec.depth_m},
                                   {"filling_rate", spec.filling_rate}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
-                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+                 seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
   // The drum: a closed cylinder whose axis (its frame's z) is the world y axis, centred on the
   // origin; it turns about +y.
   Wall drum;

@@ -31,6 +31,7 @@ struct DrumSpec {
   double fit_width_fraction = 0.6;
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct DrumFrame {

@@ -38,6 +38,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   const double g = spec.physics.gravity_m_s2.norm();
   const double v_impact = std::sqrt(2.0 * g * spec.drop_height_m);
   opt.dt_s = choose_time_step(spec.time_step, time_step_limits(probe, v_impact));
+  opt.observer = spec.observer;
   Simulation run(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
   run.add_body(b);
   Wall plate;

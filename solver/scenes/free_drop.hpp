@@ -18,6 +18,7 @@ struct FreeDropSpec {
   double max_time_s = 2.0;
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct FreeDropResult {

@@ -30,6 +30,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   }
   v_exp += spec.physics.gravity_m_s2.norm() * spec.duration_s;
   opt.dt_s = choose_time_step(spec.time_step, time_step_limits(probe, v_exp));
+  opt.observer = spec.observer;
 
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
   for (const BodyDef& b : spec.bodies) sim.add_body(b);

@@ -26,6 +26,7 @@ struct ImpactSpec {
   std::vector<ImpactWallSpec> walls;
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct BodyFinalState {

@@ -89,7 +89,7 @@ PilingResult run_piling(const PilingSpec& spec) {
                     describe_rig({{"tube_diameter_m", spec.tube_diameter_m},
                                   {"fill_height_m", spec.fill_height_m}}));
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions),
-                 seed_options(spec.physics, dt, spec.threads, spec.seed));
+                 seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
   Wall plate;
   plate.name = "plate";
   plate.shape = std::make_shared<PlaneShape>(Vec3::UnitZ());

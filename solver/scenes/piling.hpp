@@ -29,6 +29,7 @@ struct PilingSpec {
   double max_time_s = 6.0;
   int threads = 1;
   std::uint64_t seed = 0;
+  FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct PilingResult {

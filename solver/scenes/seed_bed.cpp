@@ -51,13 +51,15 @@ std::string describe_rig(std::initializer_list<std::pair<const char*, double>> k
   return s.str();
 }
 
-SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed) {
+SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed,
+                               const FrameObserver& observer) {
   SimulationOptions opt;
   opt.contact = physics.contact;
   opt.gravity_m_s2 = physics.gravity_m_s2;
   opt.dt_s = dt_s;
   opt.threads = threads;
   opt.seed = seed;
+  opt.observer = observer;
   return opt;
 }
 

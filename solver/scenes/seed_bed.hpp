@@ -32,8 +32,9 @@ void check_pour_memory(const PhysicsSpec& physics, const SeedSpec& seeds, double
 // "diameter_m = 0.2, depth_m = 0.05": a rig's size for messages.
 std::string describe_rig(std::initializer_list<std::pair<const char*, double>> keys);
 
-// Simulation options common to the seed scenes.
-SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed);
+// Simulation options common to the seed scenes; `observer` takes the run's frames (optional).
+SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int threads, std::uint64_t seed,
+                               const FrameObserver& observer = {});
 
 // Pours seeds with the factory in up to `batches` batches until `mass_kg` is placed, letting each
 // batch fall for `fall_s` to make room for the next. Returns the mass placed.

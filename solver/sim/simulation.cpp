@@ -38,6 +38,11 @@ Simulation::Simulation(InteractionTable table, SimulationOptions options)
     : table_(std::move(table)), options_(options), rng_(options.seed) {
   if (!(options_.dt_s > 0.0)) throw std::invalid_argument("Simulation: dt_s must be > 0");
   if (options_.threads < 1) options_.threads = 1;
+  if (options_.observer.on_frame) {
+    if (!(options_.observer.interval_s > 0.0))
+      throw std::invalid_argument("Simulation: a frame observer needs interval_s > 0");
+    next_frame_s_ = 0.0;
+  }
   bodies_.first_sphere.push_back(0);
 }
 
@@ -279,6 +284,7 @@ void Simulation::compute_forces(bool mid_step) {
 bool Simulation::step() {
   if (failure_.status != RunStatus::ok) return false;
   ensure_ready();
+  if (time_s_ >= next_frame_s_) emit_frame();
   const double dt = options_.dt_s;
   const std::size_t nb = bodies_.size();
   const bool prof = options_.profile;
@@ -397,11 +403,24 @@ void Simulation::fail(RunStatus s, std::int64_t body, std::string message) {
   m << ": " << message;
   failure_.message = m.str();
   if (log_) log_(failure_.message);
+  if (options_.observer.on_frame && last_frame_step_ != step_) emit_frame();
+}
+
+void Simulation::emit_frame() {
+  const double dt_frame = options_.observer.interval_s;
+  last_frame_step_ = step_;
+  // The next multiple of the interval after now. The slack of 1e-6 intervals absorbs the rounding
+  // of a time summed step by step (0.01 may arrive as 0.00999999999), so a frame is not a step late.
+  constexpr double kSlack = 1e-6;
+  next_frame_s_ = (std::floor(time_s_ / dt_frame + kSlack) + 1.0 - kSlack) * dt_frame;
+  options_.observer.on_frame(*this);
 }
 
 bool Simulation::final_check() {
-  if (!ready_ || failure_.status != RunStatus::ok) return failure_.status == RunStatus::ok;
-  return check_guards(true);
+  bool ok = failure_.status == RunStatus::ok;
+  if (ready_ && ok) ok = check_guards(true);  // a failure here has taken its frame in fail()
+  if (options_.observer.on_frame && last_frame_step_ != step_) emit_frame();
+  return ok;
 }
 
 bool Simulation::check_guards(bool energy_now) {

@@ -4,6 +4,7 @@
 // can run in one process (DESIGN.md, STYLE.md).
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -19,6 +20,19 @@
 
 namespace seedcal {
 
+class Simulation;
+
+// Frames of a run for output (a trajectory): on_frame(sim) is called at the first step (t = 0),
+// at the start of the first step at or after each multiple of interval_s, when a guard stops the
+// run (the state that stopped it) and from final_check() (the state the scene ends with), never
+// twice for the same step. It sees the simulation read-only, so the run is the same with or
+// without it; unset (no on_frame), it costs one comparison per step. One simulation per observer:
+// a scene that runs several passes the observer to the one it measures.
+struct FrameObserver {
+  double interval_s = 0.0;  // > 0 when on_frame is set
+  std::function<void(const Simulation&)> on_frame;
+};
+
 struct SimulationOptions {
   ContactOptions contact;
   Vec3 gravity_m_s2 = Vec3(0.0, 0.0, -9.81);
@@ -32,6 +46,7 @@ struct SimulationOptions {
   // neighbours are near in memory (0: never). Worlds under 512 bodies are never sorted.
   std::uint64_t sort_interval_steps = 1000;
   std::uint64_t seed = 0;
+  FrameObserver observer;
 };
 
 // Per-step contact statistics (always collected; maxima are order-independent).
@@ -67,7 +82,8 @@ class Simulation {
   bool run(std::uint64_t n);
   // Runs every guard now, the energy guard included (inside step() it runs only every
   // GuardOptions::check_interval steps, so a run shorter than that, or one that blows up after its
-  // last check, would end unchecked). Scenes call it when they end. Returns false on a failure.
+  // last check, would end unchecked). Scenes call it when they end; it also takes the last frame
+  // (FrameObserver). Returns false on a failure.
   bool final_check();
 
   std::uint32_t index_of(std::uint32_t id) const { return index_of_id_[id]; }
@@ -109,6 +125,8 @@ class Simulation {
   void compute_forces(bool mid_step);
   void predict_end_velocities(bool mid_step);
   bool check_guards(bool energy_now = false);
+  // Calls the frame observer with the current state (FrameObserver) and schedules the next frame.
+  void emit_frame();
   double energy_budget_j() const;
   void rebuild_lists();
   void sort_spatially();
@@ -144,6 +162,9 @@ class Simulation {
   std::mt19937_64 rng_;
   double time_s_ = 0.0;
   std::uint64_t step_ = 0;
+  // Time of the next frame (+inf without an observer) and the step of the last frame taken.
+  double next_frame_s_ = std::numeric_limits<double>::infinity();
+  std::uint64_t last_frame_step_ = std::numeric_limits<std::uint64_t>::max();  // none yet
   double skin_m_ = 0.0;
   double reference_energy_j_ = -1.0;  // < 0: recompute
   double reference_potential_j_ = 0.0;

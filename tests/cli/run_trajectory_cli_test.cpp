@@ -1,0 +1,95 @@
+// End-to-end: `seedcal run` writes a trajectory on request ([output] trajectory = true, here by
+// --set): trajectory.h5 with the run's provenance and one frame per interval, trajectory.xdmf
+// naming each frame; none unless asked; bad [output] values exit 2 naming the key and the range.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "calibrate/store/hdf5_handle.hpp"
+#include "tests/support/cli.hpp"
+
+namespace seedcal {
+namespace {
+
+using testing::run_cli;
+
+// One seed (nine spheres) dropped 150 mm: about 0.3 s simulated, a second of CPU.
+std::string free_drop() {
+  return testing::source_dir() + "/data/scenes/jinong1/free_drop.toml --set repeats=1 --set fidelity=quick";
+}
+
+TEST(RunTrajectoryCli, FreeDropWritesFramesAtTheInterval) {
+  const std::string out = testing::scratch_dir("traj-free-drop");
+  const auto r = run_cli("run " + free_drop() + " --out " + out +
+                         " --seed 5 --set output.trajectory=true --set output.trajectory_interval_s=0.02");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(testing::read_text(out + "/metrics.json"));
+  ASSERT_TRUE(j.contains("trajectory")) << j.dump(2);
+  EXPECT_EQ(j["trajectory"]["h5"], "trajectory.h5");
+  EXPECT_EQ(j["trajectory"]["xdmf"], "trajectory.xdmf");
+  EXPECT_EQ(j["trajectory"]["interval_s"], 0.02);
+  // A frame at t = 0, one per 20 ms and the last state: steps x dt / interval + 1 or + 2 (the end
+  // may fall on a frame time).
+  const double t_end = j["steps"].get<double>() * j["dt_s"].get<double>();
+  const auto frames = j["trajectory"]["frames"].get<std::size_t>();
+  const auto whole = static_cast<std::size_t>(t_end / 0.02);
+  EXPECT_GE(frames, whole + 1) << t_end;
+  EXPECT_LE(frames, whole + 2) << t_end;
+
+  h5::Handle f(H5Fopen((out + "/trajectory.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
+  EXPECT_EQ(h5::read_string_attr(f, "scene"), "free_drop");
+  EXPECT_NE(h5::read_string_attr(f, "config").find("trajectory"), std::string::npos);
+  h5::Handle seed(H5Aopen(f, "seed", H5P_DEFAULT), H5Aclose, "open seed");
+  std::uint64_t s = 0;
+  h5::check(H5Aread(seed, H5T_NATIVE_UINT64, &s), "read seed");
+  EXPECT_EQ(s, 5u);
+  h5::Handle g(H5Gopen2(f, "frames", H5P_DEFAULT), H5Gclose, "open /frames");
+  H5G_info_t info;
+  h5::check(H5Gget_info(g, &info), "info");
+  EXPECT_EQ(info.nlinks, frames);
+
+  // One grid per frame, each of the clump's nine spheres.
+  const std::string xdmf = testing::read_text(out + "/trajectory.xdmf");
+  const std::regex grid("<Grid Name=\"frame_[0-9]{6}\"");
+  EXPECT_EQ(static_cast<std::size_t>(std::distance(std::sregex_iterator(xdmf.begin(), xdmf.end(), grid),
+                                                   std::sregex_iterator())),
+            frames);
+  const std::regex nine("NumberOfElements=\"9\"");
+  EXPECT_EQ(static_cast<std::size_t>(std::distance(std::sregex_iterator(xdmf.begin(), xdmf.end(), nine),
+                                                   std::sregex_iterator())),
+            frames);
+}
+
+TEST(RunTrajectoryCli, NoTrajectoryUnlessAsked) {
+  const std::string out = testing::scratch_dir("traj-none");
+  const auto r = run_cli("run " + free_drop() + " --out " + out);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/trajectory.h5"));
+  EXPECT_FALSE(std::filesystem::exists(out + "/trajectory.xdmf"));
+  const auto j = nlohmann::json::parse(testing::read_text(out + "/metrics.json"));
+  EXPECT_FALSE(j.contains("trajectory"));
+}
+
+TEST(RunTrajectoryCli, BadOutputKeysExitTwo) {
+  const std::string out = testing::scratch_dir("traj-bad");
+  const auto r = run_cli("run " + free_drop() + " --out " + out +
+                         " --set output.trajectory=true --set output.trajectory_interval_s=-1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("free_drop.toml"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("output.trajectory_interval_s = -1: must be in (0, 1000]"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/trajectory.h5"));  // refused before it ran
+
+  const auto u = run_cli("run " + free_drop() + " --out " + out + " --set output.trajectry=true");
+  EXPECT_EQ(u.exit_code, 2) << u.output;
+  EXPECT_NE(u.output.find("did you mean \"trajectory\""), std::string::npos) << u.output;
+
+  const auto b = run_cli("run " + free_drop() + " --out " + out + " --set output.trajectory=3");
+  EXPECT_EQ(b.exit_code, 2) << b.output;
+  EXPECT_NE(b.output.find("output.trajectory"), std::string::npos) << b.output;
+}
+
+}  // namespace
+}  // namespace seedcal
