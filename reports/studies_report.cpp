@@ -13,7 +13,7 @@
 namespace seedcal::reports {
 namespace {
 
-const std::vector<std::string> kKinds = {"multicontact", "stiffness", "tradeoff", "moisture"};
+const std::vector<std::string> kKinds = {"multicontact", "stiffness", "tradeoff", "trend", "moisture"};
 
 nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);
@@ -171,6 +171,50 @@ void add_tradeoff(const nlohmann::json& j, Document& doc) {
   doc.sections.push_back(std::move(s));
 }
 
+// An index against one setting: every level's mean and sd, every step in pooled sd, the verdict.
+void add_trend(const nlohmann::json& j, Document& doc) {
+  const std::string key = j.value("key", std::string("?"));
+  Section s{"trend", "Trend check: " + format_value(j.value("metric", nlohmann::json(""))) + " against " + key, {}};
+  s.paragraph("Scene " + format_value(j.value("scene", nlohmann::json(""))) + " (overrides " + format_value(j.value("sets", nlohmann::json::array())) +
+              "), " + format_value(j.value("repeats", nlohmann::json())) + " seeds per level, the same at every level; expected to " +
+              format_value(j.value("expect", nlohmann::json(""))) + " by more than " + format_value(j.value("sd_multiple", nlohmann::json())) +
+              " pooled sd. " + format_value(j.value("verdict", nlohmann::json(""))) + ".");
+  Table t{"trend_levels", "Levels", {key, "index mean", "sd", "n", "CPU s per run", "status"}, {}, {}};
+  std::vector<std::vector<double>> rows;
+  for (const auto& l : member(j, "levels")) {
+    const auto& ix = member(l, "index");
+    std::string status = l.value("status", std::string("ok"));
+    if (l.contains("failure")) status += ": " + format_value(member(l["failure"], "message"));
+    t.add_row({format_value(l.value("value", nlohmann::json())), format_value(ix.value("mean", nlohmann::json())),
+               format_value(ix.value("sd", nlohmann::json())), format_value(ix.value("n", nlohmann::json())),
+               format_value(l.value("cpu_seconds_per_run", nlohmann::json())), status});
+    for (const auto& x : ix.value("samples", nlohmann::json::array()))
+      rows.push_back({as_number(l.value("value", nlohmann::json())), as_number(x)});
+  }
+  s.table(std::move(t));
+  Table c{"trend_steps", "Steps between levels", {"from", "to", "difference", "pooled sd", "difference / pooled sd", "expected way", "beyond required"}, {}, {}};
+  auto add = [&](const nlohmann::json& st) {
+    c.add_row({format_value(st.value("from", nlohmann::json())), format_value(st.value("to", nlohmann::json())),
+               format_value(st.value("difference", nlohmann::json())), format_value(st.value("pooled_sd", nlohmann::json())),
+               format_value(st.value("difference_in_pooled_sd", nlohmann::json())), format_value(st.value("expected_direction", nlohmann::json())),
+               format_value(st.value("beyond_required_sd", nlohmann::json()))});
+  };
+  for (const auto& st : member(j, "steps")) add(st);
+  add(member(j, "overall"));
+  c.notes.push_back("The last row compares the first and the last level; confirmed: " + format_value(j.value("confirmed", nlohmann::json())) + ".");
+  s.table(std::move(c));
+  if (!rows.empty()) {
+    GnuplotPlot p;
+    p.add_data("samples.dat", rows);
+    p.script = "set title " + gp_quote("Every run against " + key) + "\nset xlabel " + gp_quote(key) + "\nset ylabel " +
+               gp_quote(j.value("metric", std::string("index"))) + "\nset grid\nset offsets graph 0.1, graph 0.1, graph 0.1, graph 0.1\n"
+               "plot 'samples.dat' using 1:2 with points pt 7 lc rgb '#1f77b4' title 'runs', "
+               "'samples.dat' using 1:2 smooth unique with lines lc rgb '#d62728' title 'mean'\n";
+    add_plot(s, "trend", "Index of every run against " + key + ", with the level means", p);
+  }
+  doc.sections.push_back(std::move(s));
+}
+
 // Young's modulus against moisture, and the dimensions after soaking (no DEM).
 void add_moisture(const nlohmann::json& j, Document& doc) {
   Section s{"moisture", "Moisture study: " + format_value(j.value("variety", nlohmann::json(""))), {}};
@@ -204,7 +248,7 @@ std::vector<std::string> study_outputs(const std::string& dir) {
 Document build_studies_report(const std::string& dir) {
   const auto kinds = study_outputs(dir);
   if (kinds.empty())
-    throw InputError(dir + ": no multicontact.json, stiffness.json, tradeoff.json or moisture.json here (give the --out "
+    throw InputError(dir + ": no multicontact.json, stiffness.json, tradeoff.json, trend.json or moisture.json here (give the --out "
                      "directory of `seedcal study`)");
   Document doc;
   doc.title = "Study report";
@@ -215,6 +259,7 @@ Document build_studies_report(const std::string& dir) {
     if (k == "multicontact") add_multicontact(j, doc);
     if (k == "stiffness") add_stiffness(j, doc);
     if (k == "tradeoff") add_tradeoff(j, doc);
+    if (k == "trend") add_trend(j, doc);
     if (k == "moisture") add_moisture(j, doc);
   }
   make_ids_unique(doc);

@@ -1,6 +1,7 @@
 // `seedcal study multicontact|stiffness|moisture --out DIR`: the paper's section 4 studies
-// (calibrate/studies/paper_studies.hpp, docs/studies.md), and `seedcal study tradeoff`: speed
-// against accuracy of one scene (calibrate/studies/tradeoff_study.hpp). Writes DIR/KIND.json
+// (calibrate/studies/paper_studies.hpp, docs/studies.md), `seedcal study tradeoff`: speed
+// against accuracy of one scene (calibrate/studies/tradeoff_study.hpp), and `seedcal study trend`:
+// an index against one setting, checked in pooled sd (calibrate/studies/trend_study.hpp). Writes DIR/KIND.json
 // (with seed, options and version) and DIR/KIND.csv, prints the JSON, and renders DIR/report.html
 // and report.md of every study in DIR (reports/studies_report.hpp).
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "calibrate/io/atomic_file.hpp"
 #include "calibrate/studies/paper_studies.hpp"
 #include "calibrate/studies/tradeoff_study.hpp"
+#include "calibrate/studies/trend_study.hpp"
 #include "reports/studies_report.hpp"
 
 namespace seedcal {
@@ -26,6 +28,11 @@ struct StudyArgs {
 struct TradeoffArgs {
   TradeoffOptions o;
   std::string out = "out/tradeoff";
+};
+
+struct TrendArgs {
+  TrendOptions o;
+  std::string out = "out/trend";
 };
 
 // KIND.json and KIND.csv, then the report of every study in the directory.
@@ -70,7 +77,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   a->o.drum_scene = "data/scenes/jinong1/drum.toml";
   // The paper's section 4 model: Jinong 1, automatic filling at smoothness 2 (188 spheres in EDEM).
   a->o.sets = {"particle.clump_file=../../clumps/jinong1-auto-s2.toml"};
-  CLI::App* sub = app.add_subcommand("study", "the paper's section 4 studies (multicontact, stiffness, moisture) and the speed-accuracy tradeoff");
+  CLI::App* sub = app.add_subcommand("study", "the paper's section 4 studies (multicontact, stiffness, moisture) the speed-accuracy tradeoff and scene trend checks");
   sub->require_subcommand(1);
 
   CLI::App* mc = sub->add_subcommand("multicontact", "HM vs HMNR: free drop (10 repeats) and, with --drum, the drum at 5 rpm");
@@ -122,6 +129,30 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
     auto j = tradeoff_study(t->o);
     j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", t->o.threads}};
     write_study("tradeoff", j, tradeoff_csv(j), t->out);
+  });
+
+  auto tn = std::make_shared<TrendArgs>();
+  CLI::App* te = sub->add_subcommand("trend", "does a scene's index rise (or fall) with one setting, by more than "
+                                              "--sd-multiple pooled sd, over the same seeds at every level");
+  te->add_option("--scene", tn->o.scene, "scene file")->required();
+  te->add_option("--vary", tn->o.key, "dotted TOML path that changes (e.g. seed_seed.static_friction)")->required();
+  te->add_option("--levels", tn->o.levels, "its values, in the order the trend is read")->required()->expected(2, 100);
+  te->add_option("--expect", tn->o.expect, "rise or fall along --levels")->check(CLI::IsMember({"rise", "fall"}))->capture_default_str();
+  te->add_option("--metric", tn->o.metric, "index key of metrics.json (default: the scene's index)");
+  te->add_option("--set", tn->o.sets, "override for every level: key=value");
+  te->add_option("--repeats", tn->o.repeats, "seeds per level")->check(CLI::Range(2, 1000))->capture_default_str();
+  te->add_option("--sd-multiple", tn->o.sd_multiple, "required change, in pooled sd")->check(CLI::Range(0.0, 100.0))->capture_default_str();
+  te->add_option("--out", tn->out, "output directory")->capture_default_str();
+  add_common_options(*te, g);
+  te->callback([tn, &g] {
+    tn->o.threads = g.resolved_threads();
+    tn->o.seed = g.seed;
+    tn->o.out_dir = tn->out;
+    check_file("--scene", tn->o.scene);
+    auto j = trend_study(tn->o);
+    j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", tn->o.threads}};
+    std::cerr << j["verdict"].get<std::string>() << "\n";
+    write_study("trend", j, trend_csv(j), tn->out);
   });
 
   CLI::App* mo = sub->add_subcommand("moisture", "Young's modulus against moisture and the dimensions after soaking");

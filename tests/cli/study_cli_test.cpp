@@ -1,4 +1,4 @@
-// `seedcal study multicontact|stiffness|moisture|tradeoff` end to end (the paper's section 4 studies, with
+// `seedcal study multicontact|stiffness|moisture|tradeoff|trend` end to end (the paper's section 4 studies, with
 // few repeats so that the test takes seconds; docs/studies.md has the 10-repeat numbers).
 #include <algorithm>
 #include <cmath>
@@ -111,6 +111,44 @@ TEST(StudyCli, TradeoffRowsMeasureCostAndChange) {
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
   EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
   std::filesystem::remove_all(dir);
+}
+
+// The free drop's rebound rises with the seed-steel restitution (bounded by e^2 h): the trend
+// check confirms it over the same three seeds per level, reads each step in pooled sd, and refuses
+// to call a rise that the levels cannot show (a reversed expectation is not confirmed).
+TEST(StudyCli, TrendConfirmsReboundRisesWithRestitution) {
+  const std::string dir = scratch_dir("study-trend");
+  const std::string scene = source_dir() + "/data/scenes/jinong1/free_drop.toml";
+  const auto j = run_study("trend --scene " + scene + " --vary seed_steel.restitution --levels 0.3 0.6 0.9", dir, "trend");
+  ASSERT_EQ(j["levels"].size(), 3u) << j.dump(1);
+  ASSERT_EQ(j["steps"].size(), 2u);
+  for (const auto& l : j["levels"]) EXPECT_EQ(l["index"]["n"], 3) << l.dump();
+  const double lo = j["levels"][0]["index"]["mean"].get<double>(), hi = j["levels"][2]["index"]["mean"].get<double>();
+  EXPECT_GT(hi, lo);
+  EXPECT_NEAR(j["overall"]["difference"].get<double>(), hi - lo, 1e-12);
+  // Pooled sample sd of the first and last level: sqrt((SS_a + SS_b) / (n_a + n_b - 2)).
+  double ss = 0.0;
+  for (int level : {0, 2}) {
+    const auto& ix = j["levels"][level]["index"];
+    for (const auto& x : ix["samples"]) ss += std::pow(x.get<double>() - ix["mean"].get<double>(), 2);
+  }
+  EXPECT_NEAR(j["overall"]["pooled_sd"].get<double>(), std::sqrt(ss / 4.0), 1e-12);
+  EXPECT_GT(j["overall"]["difference_in_pooled_sd"].get<double>(), 2.0) << j["verdict"];
+  EXPECT_TRUE(j["monotone"].get<bool>());
+  EXPECT_TRUE(j["confirmed"].get<bool>()) << j["verdict"];
+  EXPECT_NE(read_text(dir + "/report.md").find("Trend check"), std::string::npos);
+  const auto r = run_study("trend --scene " + scene + " --vary seed_steel.restitution --levels 0.3 0.9 --expect fall",
+                           scratch_dir("study-trend-fall"), "trend");
+  EXPECT_FALSE(r["confirmed"].get<bool>()) << r["verdict"];
+  EXPECT_FALSE(r["overall"]["expected_direction"].get<bool>());
+  std::filesystem::remove_all(dir);
+}
+
+TEST(StudyCli, TrendOfAnUnknownKeyIsBadInput) {
+  const auto r = run_cli("study trend --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml" +
+                         " --vary seed_steel.restitutio --levels 0.3 0.9 --out " + scratch_dir("study-trend-bad"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("restitutio"), std::string::npos) << r.output;
 }
 
 TEST(StudyCli, MissingSceneIsBadInput) {

@@ -1,0 +1,124 @@
+#include "calibrate/studies/trend_study.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "calibrate/cli/errors.hpp"
+#include "calibrate/scenes/scene_file.hpp"
+#include "calibrate/studies/study_stats.hpp"
+
+namespace seedcal {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::vector<double> samples_of(const nlohmann::json& level) {
+  std::vector<double> v;
+  for (const auto& x : level["index"]["samples"]) v.push_back(x.get<double>());
+  return v;
+}
+
+// One comparison of two levels: the difference of the means, the pooled sd, their ratio, and
+// whether the difference goes the expected way and beyond the required multiple.
+nlohmann::json compare(const nlohmann::json& a, const nlohmann::json& b, double sign, double k) {
+  const double d = mean_of(b["index"]) - mean_of(a["index"]);
+  const double sp = pooled_sd(samples_of(a), samples_of(b));
+  const double ratio = sp > 0.0 ? d / sp : kNaN;
+  nlohmann::json c = {{"from", a["value"]}, {"to", b["value"]}, {"difference", number_or_null(d)},
+                      {"pooled_sd", number_or_null(sp)}, {"difference_in_pooled_sd", number_or_null(ratio)}};
+  c["expected_direction"] = std::isfinite(d) && sign * d > 0.0;
+  c["beyond_required_sd"] = std::isfinite(ratio) && sign * ratio > k;
+  return c;
+}
+
+}  // namespace
+
+double pooled_sd(const std::vector<double>& a, const std::vector<double>& b) {
+  auto ss = [](const std::vector<double>& v) {
+    double m = 0.0, s = 0.0;
+    for (double x : v) m += x;
+    m /= static_cast<double>(v.size());
+    for (double x : v) s += (x - m) * (x - m);
+    return s;
+  };
+  const double dof = static_cast<double>(a.size() + b.size()) - 2.0;
+  if (a.empty() || b.empty() || dof < 1.0) return kNaN;
+  return std::sqrt((ss(a) + ss(b)) / dof);
+}
+
+nlohmann::json trend_study(const TrendOptions& o) {
+  if (o.levels.size() < 2) throw InputError("--levels: give at least two values of " + o.key);
+  if (o.expect != "rise" && o.expect != "fall")
+    throw InputError("--expect = " + o.expect + ": allowed values are rise, fall");
+  if (o.repeats < 2) throw InputError("--repeats = " + std::to_string(o.repeats) + ": a trend check needs at least 2 seeds per level (a pooled sd)");
+  const double sign = o.expect == "rise" ? 1.0 : -1.0;
+  std::string metric = o.metric;
+  nlohmann::json j = {{"study", "trend"}, {"scene", o.scene}, {"sets", o.sets}, {"key", o.key}, {"expect", o.expect},
+                      {"sd_multiple", o.sd_multiple}, {"repeats", o.repeats}, {"seed", o.seed}};
+  nlohmann::json levels = nlohmann::json::array();
+  for (std::size_t i = 0; i < o.levels.size(); ++i) {
+    char set[256], name[64];
+    std::snprintf(set, sizeof set, "%s=%.17g", o.key.c_str(), o.levels[i]);
+    std::snprintf(name, sizeof name, "level_%zu_%.4g", i, o.levels[i]);
+    std::vector<std::string> sets = o.sets;
+    sets.push_back(set);
+    // A bad key or value is bad input (exit 2) from the scene's own checks.
+    const nlohmann::json m = run_scene_file(o.scene, sets, o.threads, o.seed, o.repeats,
+                                            o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name);
+    if (metric.empty()) metric = m.value("index_key", "");
+    nlohmann::json row = {{"value", o.levels[i]}, {"set", set}, {"index", sample_stats(per_run(m, metric))},
+                          {"cpu_seconds_per_run", sample_stats(per_run(m, "cpu_seconds"))["mean"]},
+                          {"status", m.value("status", "ok")}};
+    if (m.contains("failure")) row["failure"] = m["failure"];
+    levels.push_back(row);
+  }
+  nlohmann::json steps = nlohmann::json::array();
+  bool monotone = true;
+  for (std::size_t i = 0; i + 1 < levels.size(); ++i) {
+    steps.push_back(compare(levels[i], levels[i + 1], sign, o.sd_multiple));
+    monotone = monotone && steps.back()["expected_direction"].get<bool>();
+  }
+  const nlohmann::json overall = compare(levels.front(), levels.back(), sign, o.sd_multiple);
+  bool complete = true;
+  for (const auto& l : levels) complete = complete && l["index"]["n"].get<int>() == o.repeats;
+  const bool confirmed = complete && monotone && overall["beyond_required_sd"].get<bool>();
+  j["metric"] = metric;
+  j["levels"] = levels;
+  j["steps"] = steps;
+  j["overall"] = overall;
+  j["monotone"] = monotone;
+  j["all_runs_ok"] = complete;
+  j["confirmed"] = confirmed;
+  std::ostringstream v;
+  v.precision(3);
+  const double ratio = overall["difference_in_pooled_sd"].is_number() ? overall["difference_in_pooled_sd"].get<double>() : kNaN;
+  v << metric << (confirmed ? " confirmed to " : " not confirmed to ") << o.expect << " with " << o.key << ": first to last level "
+    << ratio << " pooled sd (required " << sign * o.sd_multiple << ")" << (monotone ? ", every step the expected way" : ", not monotone")
+    << (complete ? "" : ", some runs failed (see levels)");
+  j["verdict"] = v.str();
+  return j;
+}
+
+std::string trend_csv(const nlohmann::json& s) {
+  std::ostringstream out;
+  out.precision(10);
+  auto cell = [](const nlohmann::json& x) { return x.is_number() ? x.dump() : std::string("n/a"); };
+  out << "row,value,index_mean,index_sd,n,cpu_seconds_per_run,to,difference,pooled_sd,difference_in_pooled_sd,"
+         "expected_direction,beyond_required_sd,status\n";
+  for (const auto& l : s["levels"])
+    out << "level," << cell(l["value"]) << "," << cell(l["index"]["mean"]) << "," << cell(l["index"]["sd"]) << ","
+        << l["index"]["n"] << "," << cell(l["cpu_seconds_per_run"]) << ",,,,,,," << l["status"].get<std::string>() << "\n";
+  auto step = [&](const char* kind, const nlohmann::json& c) {
+    out << kind << "," << cell(c["from"]) << ",,,,," << cell(c["to"]) << "," << cell(c["difference"]) << ","
+        << cell(c["pooled_sd"]) << "," << cell(c["difference_in_pooled_sd"]) << ","
+        << (c["expected_direction"].get<bool>() ? "yes" : "no") << "," << (c["beyond_required_sd"].get<bool>() ? "yes" : "no")
+        << ",\n";
+  };
+  for (const auto& c : s["steps"]) step("step", c);
+  step("overall", s["overall"]);
+  return out.str();
+}
+
+}  // namespace seedcal
