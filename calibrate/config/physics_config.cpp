@@ -39,6 +39,10 @@ PhysicsConfig read_physics(TomlReader& root) {
     // standard rolling friction: the contact point's distance from the body's centre of mass).
     cfg.physics.contact.cdt_lever_from_centre_of_mass =
         c->choice("rolling_lever", {"sphere", "centre_of_mass"}, "sphere") == "centre_of_mass";
+    // CDT at rest: "static" (the torque at most stops the body's rotation within a step, as Coulomb
+    // friction holds a contact) or "literal" (-mu_r |Fn| R w/|w|, which flips every step on a body
+    // at rest and shakes a packing under load; contact/rolling_cdt.hpp).
+    cfg.physics.contact.cdt_stop_limit = c->choice("cdt_at_rest", {"static", "literal"}, "static") == "static";
     cfg.physics.contact.clip_attractive = c->boolean("clip_attractive", false);
     cfg.physics.contact.epsd_damping_ratio =
         c->number("epsd_damping_ratio", Range::closed(0.0, 1.0), 0.3);

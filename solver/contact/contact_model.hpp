@@ -22,6 +22,13 @@ struct ContactOptions {
   // Standard Rolling Friction Model): for a multi-sphere seed the outer spheres' contacts get a
   // longer lever than their own radius.
   bool cdt_lever_from_centre_of_mass = false;
+  // CDT as static rolling friction (contact/rolling_cdt.hpp): the body's rolling torque, at most
+  // sum mu_r |Fn| R_i, at most stops its rotation within the step and never reverses it. false:
+  // the literal sign-function torque -mu_r |Fn| R_i w/|w|, whose direction flips every step on a
+  // body at rest and shakes it by mu_r |Fn| R_i dt / I per step: harmless under gravity, of order
+  // 10 rad/s per step for a 9 mm seed at 200 kPa (docs/contact_models.md). Config: [contact]
+  // cdt_at_rest = "static" (true) or "literal" (false).
+  bool cdt_stop_limit = true;
   // EPSD (type C) viscous damping ratio of the rolling dashpot, Ai et al. (2011) eq. 17; 0.3 is
   // their recommended value.
   double epsd_damping_ratio = 0.3;

@@ -9,28 +9,43 @@
 // ContactOptions::cdt_lever_from_centre_of_mass, to the body's centre of mass (EDEM's definition:
 // "the distance of the contact point from the center of mass"; the same for a single sphere, longer
 // for a clump's outer spheres). It is applied to each body separately
-// (it is not an action-reaction pair). Known weakness: at rest w/|w| has no limit, so a resting
-// particle keeps a small spin jitter of order mu_r |Fn| R dt / I; the EPSD model does not
-// (measured in tests/physics/rolling_test.cpp).
+// (it is not an action-reaction pair).
+//
+// Static rolling friction (ContactOptions::cdt_stop_limit, the default). Taken literally, w/|w|
+// has no limit at rest: the torque flips every step and shakes a resting body by
+// mu_r |Fn| R dt / I per step. Under gravity that is negligible, but for a 9 mm seed at 200 kPa
+// (|Fn| ~ 16 N per contact, several contacts) it is of order 10 rad/s per step, far above the 0.01 m/s of a
+// direct shear: the shaken packing lost a third of its strength and its strength depended on the
+// shear speed (docs/contact_models.md). As Coulomb friction holds a contact below mu |Fn|, the
+// rolling torque is therefore the one that stops the body's rotation, bounded by the capacity
+// C = sum_i mu_r |Fn_i| R_i over the body's contacts: with L_p = L + h T the angular momentum the
+// body would reach over the span h the torque acts on (dt in velocity Verlet) under its other
+// torques T,
+//   tau = -min(C, |L_p| / h) L_p / |L_p|.
+// A body whose rotation C cannot stop within h gets the full -C along its spin (the literal CDT;
+// the same as -C w/|w| for a sphere); a body that C can stop is stopped and stays at rest (tested in
+// tests/physics/rolling_test.cpp). The literal form stays available: `[contact] cdt_at_rest = "literal"`.
+#include <algorithm>
 #include <cmath>
 
 #include "solver/core/vec.hpp"
 
 namespace seedcal {
 
-inline Vec3 cdt_torque(double rolling_friction, double normal_force_n, double lever_m,
-                       const Vec3& body_angular_velocity) {
-  const double w = body_angular_velocity.norm();
-  // Below this spin the direction is undefined; 1e-12 rad/s is far below any physical rotation.
-  if (w < 1e-12 || rolling_friction == 0.0) return Vec3::Zero();
-  return (-rolling_friction * std::abs(normal_force_n) * lever_m / w) * body_angular_velocity;
+// Static rolling friction: the torque per unit of capacity (multiply by C) that at most stops the
+// body's angular momentum L (kg m2/s) within h under its other torques T (N m).
+inline Vec3 cdt_stop_limited(const Vec3& angular_momentum, const Vec3& other_torque_n_m, double capacity_n_m,
+                             double h_s) {
+  const Vec3 lp = angular_momentum + h_s * other_torque_n_m;
+  const double n = lp.norm();
+  if (n == 0.0 || capacity_n_m <= 0.0) return Vec3::Zero();
+  return (-std::min(capacity_n_m, n / h_s) / (capacity_n_m * n)) * lp;
 }
 
-// The same with the body's spin direction w/|w| precomputed once per step (zero when |w| is
-// below 1e-12 rad/s), so each contact needs no square root.
-[[gnu::always_inline]] inline Vec3 cdt_torque_dir(double rolling_friction, double normal_force_n,
-                                                 double lever_m, const Vec3& spin_direction) {
-  return (-rolling_friction * std::abs(normal_force_n) * lever_m) * spin_direction;
+// The literal CDT direction -w/|w| (zero below 1e-12 rad/s, where the direction is undefined).
+inline Vec3 cdt_sign_direction(const Vec3& angular_velocity) {
+  const double w = angular_velocity.norm();
+  return w > 1e-12 ? Vec3(angular_velocity * (-1.0 / w)) : Vec3::Zero();
 }
 
 }  // namespace seedcal

@@ -62,17 +62,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
 
   std::vector<ThreadStats> tstats(static_cast<std::size_t>(threads));
   for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
-  // CDT needs each body's spin direction at every contact: computed once per body here.
-  std::vector<Vec3>& spin_dir = s.spin_direction_;
-  if constexpr (RM == RollingModel::cdt) {
-    spin_dir.resize(nb);
-#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
-    for (std::size_t b = 0; b < nb; ++b) {
-      const double w = B.angular_velocity[b].norm();
-      spin_dir[b] = w > 1e-12 ? Vec3(B.angular_velocity[b] * (1.0 / w)) : Vec3::Zero();
-    }
-  }
-
+  // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; compute_forces() turns the
+  // body's total into its rolling torque (contact/rolling_cdt.hpp).
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     int t = 0;
@@ -93,6 +84,14 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     std::fill(WC, WC + nw, 0);
     // A private copy: the per-contact updates must not share a cache line between threads.
     ThreadStats st = tstats[static_cast<std::size_t>(t)];
+    double* RC = nullptr;
+    std::vector<Simulation::CdtWallShare>* CW = nullptr;
+    if constexpr (RM == RollingModel::cdt) {
+      RC = s.thread_roll_capacity_[static_cast<std::size_t>(t)].data();
+      std::fill(RC, RC + nb, 0.0);
+      CW = &s.thread_cdt_wall_[static_cast<std::size_t>(t)];
+      CW->clear();
+    }
 
     // ---- sphere-sphere, one body pair per group -----------------------------------------------
 #pragma omp for schedule(static)
@@ -141,8 +140,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         T[bi] += rci.cross(cf.force_on_i_n);
         T[bj] -= rcj.cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
-          T[bi] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, lever_com ? rci.norm() : ri - 0.5 * overlap, spin_dir[bi]);
-          T[bj] += cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, lever_com ? rcj.norm() : rj - 0.5 * overlap, spin_dir[bj]);
+          const double c = pc.rolling_friction * std::abs(cf.normal_force_n);
+          RC[bi] += c * (lever_com ? rci.norm() : ri - 0.5 * overlap);
+          RC[bj] += c * (lever_com ? rcj.norm() : rj - 0.5 * overlap);
         } else if constexpr (RM == RollingModel::epsd) {
           const double ii = B.principal_inertia[bi].mean() + mi * rci.squaredNorm();
           const double ij = B.principal_inertia[bj].mean() + mj * rcj.squaredNorm();
@@ -210,10 +210,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         if constexpr (RM == RollingModel::cdt) {
           // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
           // plate feels it as a torque about its origin).
-          const double lever = lever_com ? rc.norm() : hit.distance;
-          const Vec3 tau = cdt_torque_dir(pc.rolling_friction, cf.normal_force_n, lever, spin_dir[b]);
-          T[b] += tau;
-          WT[ww[a]] -= tau;
+          const double c = pc.rolling_friction * std::abs(cf.normal_force_n) * (lever_com ? rc.norm() : hit.distance);
+          RC[b] += c;
+          CW->push_back({ww[a], b, c});
         } else if constexpr (RM == RollingModel::epsd) {
           const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
           const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s,

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/contact/rolling_cdt.hpp"
 #include "solver/integrate/free_rotation.hpp"
 #include "solver/sim/contact_forces.hpp"
 #include "solver/sim/time_step.hpp"
@@ -134,6 +135,8 @@ void Simulation::ensure_ready() {
   thread_wall_torque_.assign(t, std::vector<Vec3>(walls_.size()));
   thread_wall_stiffness_.assign(t, std::vector<double>(walls_.size()));
   thread_wall_contacts_.assign(t, std::vector<int>(walls_.size()));
+  thread_roll_capacity_.assign(t, std::vector<double>(bodies_.size()));
+  thread_cdt_wall_.assign(t, {});
   update_sphere_positions();
   rebuild_lists();
   ready_ = true;
@@ -206,12 +209,28 @@ void Simulation::compute_forces(bool mid_step) {
   const std::size_t nb = bodies_.size();
   const std::size_t nt = thread_force_.size();
   const Vec3 g = options_.gravity_m_s2;
+  const bool cdt = options_.contact.rolling == RollingModel::cdt;
+  const bool cdt_limit = options_.contact.cdt_stop_limit;
+  // The torques computed now act over the second half of this step and the first half of the
+  // next (velocity Verlet): over dt from mid-step, over dt/2 when the velocities are at the force
+  // time (the first call).
+  const double h = mid_step ? options_.dt_s : 0.5 * options_.dt_s;
+  if (cdt) cdt_torque_per_capacity_.resize(nb);
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t b = 0; b < nb; ++b) {
     Vec3 f = bodies_.mass_kg[b] * g, tq = Vec3::Zero();
+    double capacity = 0.0;
     for (std::size_t t = 0; t < nt; ++t) {
       f += thread_force_[t][b];
       tq += thread_torque_[t][b];
+      if (cdt) capacity += thread_roll_capacity_[t][b];
+    }
+    if (cdt) {
+      Vec3 u = Vec3::Zero();
+      if (capacity > 0.0) u = cdt_limit ? cdt_stop_limited(bodies_.angular_momentum[b], tq, capacity, h)
+                                        : cdt_sign_direction(bodies_.angular_velocity[b]);
+      cdt_torque_per_capacity_[b] = u;
+      tq += capacity * u;
     }
     bodies_.force_n[b] = f;
     bodies_.torque_n_m[b] = tq;
@@ -231,6 +250,11 @@ void Simulation::compute_forces(bool mid_step) {
     walls_[w].contact_stiffness_n_m = k;
     walls_[w].contacts = c;
   }
+  // The walls take the reaction of their contacts' rolling torques (a drum feels it about its axis).
+  if (cdt)
+    for (std::size_t t = 0; t < nt; ++t)
+      for (const CdtWallShare& share : thread_cdt_wall_[t])
+        walls_[share.wall].torque_n_m -= share.capacity_n_m * cdt_torque_per_capacity_[share.body];
   stats_ = StepStats{};
   stats_.sphere_contacts = total.sphere_contacts;
   stats_.wall_contacts = total.wall_contacts;

@@ -145,7 +145,16 @@ class Simulation {
   StepStats stats_;
   std::vector<int> body_contacts_;
   std::vector<int> sphere_group_touch_, wall_group_touch_;
-  std::vector<Vec3> spin_direction_;  // CDT scratch: w / |w| per body
+  // CDT (contact/rolling_cdt.hpp): per thread, each body's rolling-torque capacity sum mu_r |Fn| R_i
+  // and the wall contacts' shares (the wall takes the reaction); per body, the torque per unit of
+  // capacity that compute_forces() settles on.
+  struct CdtWallShare {
+    std::uint32_t wall, body;
+    double capacity_n_m;
+  };
+  std::vector<std::vector<double>> thread_roll_capacity_;
+  std::vector<std::vector<CdtWallShare>> thread_cdt_wall_;
+  std::vector<Vec3> cdt_torque_per_capacity_;
   // Predicted end-of-step velocity and spin per body, for the dashpots (contact/hertz_mindlin.hpp).
   std::vector<Vec3> velocity_end_, angular_velocity_end_;
   // Per-thread force/torque accumulators, reduced in thread order (deterministic for a given

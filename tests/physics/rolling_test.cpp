@@ -1,4 +1,5 @@
-// Rolling resistance: CDT deceleration of a rolling sphere, and behaviour at rest (CDT vs EPSD).
+// Rolling resistance: CDT deceleration of a rolling sphere and of a spinning one, and behaviour at
+// rest (EPSD, CDT as static rolling friction, literal CDT).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,7 +15,7 @@ constexpr double kR = 0.01;
 constexpr double kG = 9.81;
 
 // A sphere resting on the plane z = 0 at its static Hertz overlap, rolling along +x without slip.
-Simulation rolling_sphere(RollingModel model, double mu_r, double v0) {
+Simulation rolling_sphere(RollingModel model, double mu_r, double v0, bool cdt_stop_limit = true) {
   testing::MaterialSpec m;
   m.density_kg_m3 = 2500.0;
   m.youngs_modulus_pa = 1e8;
@@ -32,6 +33,7 @@ Simulation rolling_sphere(RollingModel model, double mu_r, double v0) {
   b.angular_velocity_rad_s = Vec3(0, v0 / kR, 0);  // w x (0,0,-r) = -v: no slip
   SimulationOptions opt;
   opt.contact.rolling = model;
+  opt.contact.cdt_stop_limit = cdt_stop_limit;
   return testing::body_on_plane(table, opt, b);
 }
 
@@ -56,8 +58,8 @@ TEST(Rolling, CdtDecelerationMatchesTheory) {
 }
 
 // Spin left on a sphere that has come to rest: RMS of |w| over the last 0.05 s.
-double resting_spin(RollingModel model) {
-  Simulation sim = rolling_sphere(model, 0.1, 0.05);  // stops after about 0.07 s
+double resting_spin(RollingModel model, bool cdt_stop_limit = true) {
+  Simulation sim = rolling_sphere(model, 0.1, 0.05, cdt_stop_limit);  // stops after about 0.07 s
   EXPECT_TRUE(sim.run(static_cast<std::uint64_t>(0.3 / sim.options().dt_s)));
   double sum = 0.0;
   int n = 0;
@@ -70,21 +72,50 @@ double resting_spin(RollingModel model) {
   return std::sqrt(sum / n);
 }
 
-TEST(Rolling, EpsdRestsWithoutSpinJitterCdtJitters) {
+TEST(Rolling, EpsdAndStaticCdtRestWithoutSpinJitterLiteralCdtJitters) {
   const double w_epsd = resting_spin(RollingModel::epsd);
   const double w_cdt = resting_spin(RollingModel::cdt);
-  std::printf("resting spin RMS: EPSD %.3e rad/s, CDT %.3e rad/s\n", w_epsd, w_cdt);
+  const double w_literal = resting_spin(RollingModel::cdt, false);
+  std::printf("resting spin RMS: EPSD %.3e rad/s, CDT %.3e rad/s, literal CDT %.3e rad/s\n", w_epsd, w_cdt, w_literal);
   // EPSD: the spring-dashpot holds the sphere still; 1e-6 rad/s is a rotation of 1e-8 m/s at the
-  // surface, far below anything a scene measures.
+  // surface, far below anything a scene measures. CDT as static rolling friction stops the spin and
+  // keeps it stopped.
   EXPECT_LT(w_epsd, 1e-6);
-  // CDT: the torque flips with the sign of w every step; the jitter is bounded by one step's
-  // torque impulse, mu_r m g r dt / I (documented in docs/contact_models.md).
-  testing::MaterialSpec m;
+  EXPECT_LT(w_cdt, 1e-6);
+  // Literal CDT: the torque flips with the sign of w every step; the jitter is bounded by one
+  // step's torque impulse, mu_r m g r dt / I (docs/contact_models.md), and it is there.
   Simulation probe = rolling_sphere(RollingModel::cdt, 0.1, 0.0);
   const double mass = probe.bodies().mass_kg[0];
   const double inertia = probe.bodies().principal_inertia[0].x();
   const double bound = 0.1 * mass * kG * kR * probe.options().dt_s / inertia;
-  EXPECT_LT(w_cdt, 2.0 * bound);
+  EXPECT_LT(w_literal, 2.0 * bound);
+  EXPECT_GT(w_literal, 0.01 * bound);  // measured 0.019 of the bound
+}
+
+// A sphere resting on the plane and spinning about the vertical: a point contact has no torsional
+// friction, so only the rolling torque acts, I dw/dt = -mu_r m g R' (R' = r - overlap, the lever):
+// w falls linearly to zero at t* = I w0 / (mu_r m g R') and stays there (static rolling friction;
+// the literal CDT would reverse it every step).
+TEST(Rolling, CdtSpinStopsAtTheAnalyticalTimeAndStaysStopped) {
+  const double mu_r = 0.1, w0 = 20.0;
+  Simulation sim = rolling_sphere(RollingModel::cdt, mu_r, 0.0);
+  sim.set_body_motion(0, Vec3::Zero(), Vec3(0.0, 0.0, w0));
+  const double dt = sim.options().dt_s;
+  const double mass = sim.bodies().mass_kg[0], inertia = sim.bodies().principal_inertia[0].z();
+  const double overlap = kR - sim.bodies().position_m[0].z();
+  const double t_stop = inertia * w0 / (mu_r * mass * kG * (kR - overlap));
+  ASSERT_TRUE(sim.run(static_cast<std::uint64_t>(0.5 * t_stop / dt)));
+  const double w_half = sim.bodies().angular_velocity[0].z();
+  std::printf("spin at %.4f s: %.4f rad/s (theory %.4f); t* = %.4f s\n", sim.time_s(), w_half,
+              w0 * (1.0 - sim.time_s() / t_stop), t_stop);
+  EXPECT_NEAR(w_half / (w0 * (1.0 - sim.time_s() / t_stop)), 1.0, 0.01);
+  ASSERT_TRUE(sim.run(static_cast<std::uint64_t>(0.6 * t_stop / dt)));
+  double w_max = 0.0;
+  for (int s = 0; s < 2000; ++s) {
+    ASSERT_TRUE(sim.step());
+    w_max = std::max(w_max, sim.bodies().angular_velocity[0].norm());
+  }
+  EXPECT_LT(w_max, 1e-9) << "the spin did not stay stopped";
 }
 
 }  // namespace
