@@ -1,0 +1,63 @@
+// The piling and drum scenes at `quick` fidelity from the CLI (the two costly scenes, in their own
+// ctest entry so that they run beside the others): each writes its index with the run report, its
+// raw data and its picture, and the index lies in a physically sensible range. Their quick rigs
+// against the paper rigs, with three seeds each, and the trend checks are measured in
+// docs/scenes/README.md and piling.md (too long for the suite).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include "tests/support/scene_runs.hpp"
+
+namespace seedcal {
+namespace {
+
+using testing::expect_run_report;
+using testing::run_quick_scene;
+
+TEST(HeapDrumQuick, PilingHeapHasASensibleAngle) {
+  const auto j = run_quick_scene("piling", "--seed 1", "piling");
+  expect_run_report(j);
+  const std::string out = j["out_dir"];
+  EXPECT_TRUE(std::filesystem::exists(out + "/piling_profile.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/piling.svg"));
+  const double angle = j["angle_of_repose_deg"].get<double>();
+  std::printf("piling quick: %.1f deg (laboratory 31.76, sd 1.16), %zu sectors, heap %.1f mm, %.0f CPU s\n", angle,
+              j["sector_angles_deg"].size(), 1000.0 * j["heap_height_m"].get<double>(), j["cpu_seconds"].get<double>());
+  // A heap of seeds with friction 0.55 stands between the angle of a loose frictional packing
+  // and the steepest seed heaps (20 to 40 deg); every sector fitted, and the heap is at least four
+  // seeds (9 mm) high, so that its side is a slope and not a step.
+  EXPECT_GT(angle, 20.0);
+  EXPECT_LT(angle, 40.0);
+  EXPECT_EQ(j["sector_angles_deg"].size(), 8u);
+  EXPECT_GT(j["heap_height_m"].get<double>(), 0.036);
+  EXPECT_NE(j["stop_reason"].get<std::string>().find("settled"), std::string::npos) << j["stop_reason"];
+}
+
+TEST(HeapDrumQuick, DrumSurfaceHasASensibleAngleAndTheRigsNumbers) {
+  const auto j = run_quick_scene("drum", "--seed 1", "drum");
+  expect_run_report(j);
+  const std::string out = j["out_dir"];
+  EXPECT_TRUE(std::filesystem::exists(out + "/drum_surface.csv"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/drum.svg"));
+  const double angle = j["dynamic_angle_of_repose_deg"].get<double>();
+  std::printf("drum quick, 5 rpm: %.1f deg (sd over the frames %.1f; the paper's simulation 43.80), %.0f CPU s\n", angle,
+              j["dynamic_angle_frames_sd_deg"].get<double>(), j["cpu_seconds"].get<double>());
+  // Froude number w^2 Rc / g at 5 rpm in a 200 mm drum, and the bed height of an 11.04 % fill:
+  // (eps - sin eps cos eps) / pi = 0.1104 at eps = 0.8435 rad, h = Rc (1 - cos eps) = 33.5 mm.
+  const double w = 5.0 * 2.0 * std::numbers::pi / 60.0;
+  EXPECT_NEAR(j["froude_number"].get<double>(), w * w * 0.1 / 9.81, 1e-12);
+  EXPECT_NEAR(j["fill_height_m"].get<double>(), 0.03351, 0.00001);
+  ASSERT_EQ(j["frames"].size(), 3u);
+  for (const auto& f : j["frames"]) EXPECT_GT(f["r2"].get<double>(), 0.8) << f.dump();
+  // The rolling regime of a slowly turning drum: the surface stands above the static angle of
+  // repose and well below a cataracting bed.
+  EXPECT_GT(angle, 30.0);
+  EXPECT_LT(angle, 55.0);
+  EXPECT_EQ(j["stop_reason"], "all frames taken");
+}
+
+}  // namespace
+}  // namespace seedcal

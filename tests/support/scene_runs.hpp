@@ -1,0 +1,31 @@
+#pragma once
+// Runs a shipped Jinong 1 scene at `quick` fidelity through the CLI and reads its metrics.json
+// (with the output directory under "out_dir"), and checks the run report every scene writes.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/support/cli.hpp"
+
+namespace seedcal::testing {
+
+// One thread per run: ctest runs two tests at once on two cores, and OpenMP threads that spin while
+// the other test holds the core made a quick shear several times slower (README, "Threads").
+inline nlohmann::json run_quick_scene(const std::string& scene, const std::string& extra, const std::string& tag) {
+  const std::string out = scratch_dir(tag);
+  const auto r = run_cli("run " + source_dir() + "/data/scenes/jinong1/" + scene +
+                         ".toml --set fidelity=quick --threads 1 --out " + out + " " + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  auto j = nlohmann::json::parse(read_text(out + "/metrics.json"));
+  j["out_dir"] = out;
+  return j;
+}
+
+inline void expect_run_report(const nlohmann::json& j) {
+  for (const char* k : {"cpu_seconds", "wall_seconds", "steps", "bodies", "spheres", "stop_reason", "provenance"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["status"], "ok");
+}
+
+}  // namespace seedcal::testing
