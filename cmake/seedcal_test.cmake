@@ -1,18 +1,29 @@
-# seedcal_add_test(NAME name SOURCES a.cpp ... LIBS lib ... [LABELS l ...] [TIMEOUT s])
+# seedcal_add_test(NAME name SOURCES a.cpp ... LIBS lib ... [LABELS l ...] [TIMEOUT s] [CASES c ...])
 # Tests are listed explicitly, one call per test executable. Labels used by scripts/test.sh:
 #   unit, physics, regression, cli, slow (left out of the sanitizer stage).
+# CASES: one ctest entry per listed gtest test suite (NAME_suite, run with --gtest_filter=suite.*)
+# instead of one for the executable, so that `ctest -j` runs long cases side by side.
 function(seedcal_add_test)
-  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main seedcal_warnings)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   # End-to-end tests run the binary: build it first.
   add_dependencies(${T_NAME} seedcal)
-  add_test(NAME ${T_NAME} COMMAND ${T_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
   if(NOT T_TIMEOUT)
     set(T_TIMEOUT 600)
   endif()
-  set_tests_properties(${T_NAME} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
+  set(entries "")
+  if(T_CASES)
+    foreach(c IN LISTS T_CASES)
+      add_test(NAME ${T_NAME}_${c} COMMAND ${T_NAME} --gtest_filter=${c}.* WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+      list(APPEND entries ${T_NAME}_${c})
+    endforeach()
+  else()
+    add_test(NAME ${T_NAME} COMMAND ${T_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR})
+    set(entries ${T_NAME})
+  endif()
+  set_tests_properties(${entries} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
                        ENVIRONMENT "SEEDCAL_SOURCE_DIR=${PROJECT_SOURCE_DIR};SEEDCAL_BINARY=${CMAKE_BINARY_DIR}/seedcal")
 endfunction()

@@ -8,7 +8,7 @@
 #include "calibrate/cli/commands.hpp"
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/clumps/clump_source.hpp"
-#include "calibrate/cli/version.hpp"
+#include "calibrate/cli/version_string.hpp"
 #include "solver/scenes/bench_beds.hpp"
 
 namespace seedcal {

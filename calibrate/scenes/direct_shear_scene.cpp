@@ -25,6 +25,9 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
     spec.lid_max_speed_m_s = rig->number("lid_max_speed_m_s", Range::left_open(0.0, 10.0), spec.lid_max_speed_m_s);
     spec.record_interval_s = rig->number("record_interval_s", Range::left_open(0.0, 1.0), spec.record_interval_s);
     spec.smoothing_m = rig->number("smoothing_m", Range::closed(0.0, 0.1), spec.smoothing_m);
+    spec.failure_displacement_m = rig->number("failure_displacement_m", Range::closed(1e-5, 1.0), spec.failure_displacement_m);
+    spec.upper_ring_fixed = rig->boolean("upper_ring_fixed", spec.upper_ring_fixed);
+    spec.upper_ring_mass_kg = rig->number("upper_ring_mass_kg", Range::closed(0.0, 1e3), spec.upper_ring_mass_kg);
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();
@@ -40,16 +43,17 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   j["normal_stress_pa"] = spec.normal_stress_pa;
   j["inertial_number"] = r.inertial_number;
   j["dilation_m"] = r.dilation_m;
+  j["upper_ring_lift_m"] = r.upper_ring_lift_m;
   j["seeds"] = r.seeds;
   j["sample_mass_kg"] = r.sample_mass_kg;
   j["sample_bulk_density_kg_m3"] = r.sample_mass_kg / (std::numbers::pi * 0.25 * spec.diameter_m * spec.diameter_m * spec.sample_height_m);
   add_seed_scene_keys(j, cfg, r.run);
   if (!ctx.out_dir.empty()) {
     std::ostringstream csv;
-    csv << "displacement_m,shear_stress_pa,smoothed_shear_stress_pa,normal_stress_pa,lid_height_m\n";
+    csv << "displacement_m,shear_stress_pa,smoothed_shear_stress_pa,normal_stress_pa,lid_height_m,upper_ring_lift_m\n";
     for (const ShearSample& s : r.curve)
       csv << s.displacement_m << "," << s.shear_stress_pa << "," << s.smoothed_shear_stress_pa << ","
-          << s.normal_stress_pa << "," << s.lid_height_m << "\n";
+          << s.normal_stress_pa << "," << s.lid_height_m << "," << s.upper_ring_lift_m << "\n";
     write_file_atomic(ctx.out_dir + "/direct_shear_curve.csv", csv.str());
     SideView view;
     view.title = "direct shear: peak " + std::to_string(r.shear_strength_pa / 1e3) + " kPa (shear plane in red)";

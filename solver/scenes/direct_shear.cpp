@@ -107,7 +107,17 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
 
   // Shear: the upper ring and the lid move along +x.
   const Vec3 v(spec.shear_speed_m_s, 0.0, 0.0);
-  sim.walls()[upper_index].motion = std::make_shared<ConstantVelocity>(v);
+  const double ring_z0 = sim.walls()[upper_index].pose.origin_m.z();
+  if (spec.upper_ring_fixed) {
+    sim.walls()[upper_index].motion = std::make_shared<ConstantVelocity>(v);
+  } else {
+    // Resting on the lower ring under its weight m g: a servo that holds the seeds' upward push at
+    // m g lifts the ring when they push harder and sets it back on its seat when they push less.
+    auto ring = std::make_shared<Servo>(-Vec3::UnitZ(), spec.upper_ring_mass_kg * g, spec.lid_max_speed_m_s);
+    ring->set_seat(sim.walls()[upper_index].pose.origin_m);
+    ring->set_transverse_velocity(v);
+    sim.walls()[upper_index].motion = ring;
+  }
   servo->set_transverse_velocity(v);
   const double z0 = sim.walls()[lid_index].pose.origin_m.z();
   const double x0 = sim.walls()[upper_index].pose.origin_m.x();
@@ -125,7 +135,9 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
     // Force the seeds exert on the moving half along -x resists the motion: shear force = -F_x.
     const double tau = -(up.force_n.x() + l.force_n.x()) / area;
     const double sigma = servo->measured_force_n(l) / area;
-    res.curve.push_back({up.pose.origin_m.x() - x0, tau, sigma, l.pose.origin_m.z(), 0.0});
+    const double lift = up.pose.origin_m.z() - ring_z0;
+    res.upper_ring_lift_m = std::max(res.upper_ring_lift_m, lift);
+    res.curve.push_back({up.pose.origin_m.x() - x0, tau, sigma, l.pose.origin_m.z(), 0.0, lift});
     sigma_sum += sigma;
     ++n;
   }
@@ -143,10 +155,10 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
       }
     res.curve[k].smoothed_shear_stress_pa = sum / n_avg;
   }
-  // Failure as in ASTM D3080: the peak, or the stress at a relative displacement of 10 % of the
-  // box diameter when the curve has no peak before it.
+  // Failure as in GB/T 50123: the peak, or the stress at the failure displacement (4 mm) when the
+  // curve has no peak before it.
   for (const ShearSample& s : res.curve)
-    if (s.displacement_m <= spec.failure_displacement_fraction * spec.diameter_m &&
+    if (s.displacement_m <= spec.failure_displacement_m &&
         s.smoothed_shear_stress_pa > res.shear_strength_pa) {
       res.shear_strength_pa = s.smoothed_shear_stress_pa;
       res.displacement_at_peak_m = s.displacement_m;

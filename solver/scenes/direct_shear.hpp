@@ -6,10 +6,13 @@
 // as a guide above the sample so the pour stays inside), settled, the surplus above the sample
 // height is removed by centroid, a servo lid consolidates the sample at the normal stress
 // (default 200 kPa) until the lid settles, then the upper ring and the lid move horizontally at
-// the shear speed for the shear displacement while the lid keeps the stress. Shear stress = the
-// horizontal force the seeds exert on the upper ring and the lid / the nominal area pi D^2 / 4;
-// shear strength = the peak of that curve after a moving average over `smoothing_m` (0.5 mm),
-// searched up to 10 % of the diameter (ASTM D3080: the peak, or the stress at 10 % if none). Also reported: the stress ratio tau/sigma, the dilation (lid rise)
+// the shear speed for the shear displacement while the lid keeps the stress. The upper ring rests
+// on the lower one under its weight and lifts off when seeds wedged at the split push it up
+// harder (as the ZJ box's upper half, on balls, does). Shear stress = the horizontal force the
+// seeds exert on the upper ring and the lid / the nominal area pi D^2 / 4; shear strength = the
+// peak of that curve after a moving average over `smoothing_m` (0.5 mm), searched up to
+// `failure_displacement_m` (GB/T 50123, the standard of the ZJ apparatus: the peak, or the stress
+// at 4 mm if none). Also reported: the stress ratio tau/sigma, the dilation (lid rise)
 // curve, and the inertial number I = gamma_dot d sqrt(rho / sigma) with gamma_dot = v / d (a shear
 // band about one seed thick), which should stay below 1e-3 for a quasi-static test.
 #include "solver/scenes/seed_bed.hpp"
@@ -35,14 +38,23 @@ struct DirectShearSpec {
   double lid_max_speed_m_s = 0.1;
   double record_interval_s = 2e-4;
   double smoothing_m = 0.0005;       // moving-average window of the curve before the peak
-  double failure_displacement_fraction = 0.1;  // peak searched up to this x the diameter
+  // Failure (GB/T 50123, the ZJ apparatus's standard): the peak of the smoothed curve up to this
+  // shear displacement, or the stress there when the curve is still rising (ASTM D3080: 10 % of
+  // the diameter).
+  double failure_displacement_m = 0.004;
+  // The upper ring rests on the lower one and lifts off it when the seeds push it up with more than
+  // its weight (AS 1289.6.2.2 note 1: restraining the top half vertically "can significantly
+  // influence the measured shear force"); fixed: it never moves vertically.
+  bool upper_ring_fixed = false;
+  double upper_ring_mass_kg = 0.5;
   int threads = 1;
   std::uint64_t seed = 0;
   FrameObserver observer;  // frames for a trajectory (optional)
 };
 
 struct ShearSample {
-  double displacement_m, shear_stress_pa, normal_stress_pa, lid_height_m, smoothed_shear_stress_pa;
+  double displacement_m, shear_stress_pa, normal_stress_pa, lid_height_m, smoothed_shear_stress_pa,
+      upper_ring_lift_m;
 };
 
 struct DirectShearResult {
@@ -53,6 +65,7 @@ struct DirectShearResult {
   double mean_normal_stress_pa = 0.0;
   double inertial_number = 0.0;
   double dilation_m = 0.0;             // lid rise from the start of shear to the end
+  double upper_ring_lift_m = 0.0;      // highest lift of the upper ring off the lower one
   std::size_t seeds = 0;
   double sample_mass_kg = 0.0;
   std::vector<ShearSample> curve;

@@ -51,12 +51,17 @@ class Servo final : public WallMotion {
   double area_m2() const { return area_; }
   double measured_stress_pa(const Wall& w) const { return area_ > 0.0 ? measured_force_n(w) / area_ : 0.0; }
   double alpha() const { return alpha_; }
+  // A seat: the wall origin never moves past `point` along the servo direction (a shear box's
+  // upper ring rests on the lower ring and can only lift off it). Without a seat it travels freely.
+  void set_seat(const Vec3& point) { seat_ = point; has_seat_ = true; }
 
  private:
   Vec3 dir_;
   double target_, v_max_, alpha_;
   double area_ = 0.0;
   Vec3 transverse_ = Vec3::Zero();
+  Vec3 seat_ = Vec3::Zero();
+  bool has_seat_ = false;
 };
 
 using ServoWall = Servo;

@@ -90,5 +90,36 @@ TEST(ServoWall, ApproachesAtTheCapWithoutContactsAndValidates) {
   EXPECT_THROW(Servo(Vec3::UnitZ(), 1.0, 0.1, 1.5), std::invalid_argument);
 }
 
+TEST(ServoWall, SeatedRingLiftsOnlyWhenPushedHarderThanItsWeight) {
+  // A shear box's upper ring (0.5 kg, W = 4.9 N) rests on its seat: pushed down or pushed up by
+  // less than W it stays there, pushed up by more it lifts at alpha (F - W) / (k dt), and with the
+  // push gone it comes back down onto the seat but not through it. The transverse motion goes on.
+  const double W = 0.5 * 9.81, dt = 1e-5, k = 1e6;
+  Servo ring(-Vec3::UnitZ(), W, 0.1);
+  ring.set_transverse_velocity(Vec3(0.01, 0, 0));
+  Wall w;
+  w.pose.origin_m = Vec3(0, 0, 0.01);
+  ring.set_seat(w.pose.origin_m);
+  w.contact_stiffness_n_m = k;
+  w.force_n = Vec3(0, 0, -50.0);  // friction drags it down: stays on the seat
+  ring.advance(w, 0.0, dt);
+  EXPECT_DOUBLE_EQ(w.pose.origin_m.z(), 0.01);
+  EXPECT_DOUBLE_EQ(w.pose.velocity_m_s.z(), 0.0);
+  EXPECT_NEAR(w.pose.velocity_m_s.x(), 0.01, 1e-15);
+  w.force_n = Vec3(0, 0, 0.9 * W);  // pushed up by less than its weight: stays
+  ring.advance(w, 0.0, dt);
+  EXPECT_DOUBLE_EQ(w.pose.origin_m.z(), 0.01);
+  w.force_n = Vec3(0, 0, W + 5.0);  // 5 N more than its weight: lifts (0.05 m/s, under the cap)
+  ring.advance(w, 0.0, dt);
+  const double v = 0.1 * 5.0 / (k * dt);
+  EXPECT_NEAR(w.pose.velocity_m_s.z(), v, 1e-12);
+  EXPECT_NEAR(w.pose.origin_m.z(), 0.01 + v * dt, 1e-15);
+  w.force_n = Vec3::Zero();
+  w.contact_stiffness_n_m = 0.0;  // no contact: it would fall at the cap, the seat stops it
+  for (int s = 0; s < 10; ++s) ring.advance(w, 0.0, dt);
+  EXPECT_NEAR(w.pose.origin_m.z(), 0.01, 1e-15);
+  EXPECT_GE(w.pose.origin_m.z(), 0.01 - 1e-15);
+}
+
 }  // namespace
 }  // namespace seedcal

@@ -1,8 +1,8 @@
-// The piling and drum scenes at `quick` fidelity from the CLI (the two costly scenes, in their own
-// ctest entry so that they run beside the others): each writes its index with the run report, its
-// raw data and its picture, and the index lies in a physically sensible range. Their quick rigs
-// against the paper rigs, with three seeds each, and the trend checks are measured in
-// docs/scenes/README.md and piling.md (too long for the suite).
+// The piling and drum scenes at `quick` fidelity from the CLI (the two costly scenes, each its own
+// ctest entry, tests/CMakeLists.txt, so that they run side by side): each writes its index with
+// the run report, its raw data and its picture, and the index lies in a physically sensible
+// range. Their quick rigs against the paper rigs, with three seeds each, and the trend checks are
+// measured in docs/scenes/README.md and piling.md (too long for the suite).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@ namespace {
 using testing::expect_run_report;
 using testing::run_quick_scene;
 
-TEST(HeapDrumQuick, PilingHeapHasASensibleAngle) {
+TEST(PilingQuick, HeapHasASensibleAngle) {
   const auto j = run_quick_scene("piling", "--seed 1", "piling");
   expect_run_report(j);
   const std::string out = j["out_dir"];
@@ -36,7 +36,7 @@ TEST(HeapDrumQuick, PilingHeapHasASensibleAngle) {
   EXPECT_NE(j["stop_reason"].get<std::string>().find("settled"), std::string::npos) << j["stop_reason"];
 }
 
-TEST(HeapDrumQuick, DrumSurfaceHasASensibleAngleAndTheRigsNumbers) {
+TEST(DrumQuick, SurfaceHasASensibleAngleAndTheRigsNumbers) {
   const auto j = run_quick_scene("drum", "--seed 1", "drum");
   expect_run_report(j);
   const std::string out = j["out_dir"];
