@@ -1,10 +1,12 @@
-# seedcal_add_test(NAME name SOURCES a.cpp ... LIBS lib ... [LABELS l ...] [TIMEOUT s] [CASES c ...])
+# seedcal_add_test(NAME name SOURCES a.cpp ... LIBS lib ... [LABELS l ...] [TIMEOUT s] [COST s] [CASES c ...])
 # Tests are listed explicitly, one call per test executable. Labels used by scripts/test.sh:
 #   unit, physics, regression, cli, slow (left out of the sanitizer stage).
 # CASES: one ctest entry per listed gtest test suite (NAME_suite, run with --gtest_filter=suite.*)
 # instead of one for the executable, so that `ctest -j` runs long cases side by side.
+# COST: the entry's expected seconds in Release. `ctest -j` starts the costliest entries first; it
+# learns the costs after a run, but a clean clone (CI) has none and would start the longest last.
 function(seedcal_add_test)
-  cmake_parse_arguments(T "" "NAME;TIMEOUT" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
+  cmake_parse_arguments(T "" "NAME;TIMEOUT;COST" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
   add_executable(${T_NAME} ${T_SOURCES})
   target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main seedcal_warnings)
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
@@ -26,4 +28,7 @@ function(seedcal_add_test)
   endif()
   set_tests_properties(${entries} PROPERTIES LABELS "${T_LABELS}" TIMEOUT ${T_TIMEOUT}
                        ENVIRONMENT "SEEDCAL_SOURCE_DIR=${PROJECT_SOURCE_DIR};SEEDCAL_BINARY=${CMAKE_BINARY_DIR}/seedcal")
+  if(T_COST)
+    set_tests_properties(${entries} PROPERTIES COST ${T_COST})
+  endif()
 endfunction()
