@@ -26,9 +26,9 @@ void Servo::advance(Wall& w, double, double dt) {
   const double error = target_ - measured_force_n(w);
   double v = w.contact_stiffness_n_m > 0.0 ? alpha_ * error / (w.contact_stiffness_n_m * dt) : v_max_;
   v = std::clamp(v, -v_max_, v_max_);
-  if (has_seat_) {
+  if (seat_) {
     // Resting on the seat: it may lift (v < 0) but not move further along the direction.
-    const double gap = (seat_ - w.pose.origin_m).dot(dir_);  // >= 0 while clear of the seat
+    const double gap = (*seat_ - w.pose.origin_m).dot(dir_);  // >= 0 while clear of the seat
     v = std::min(v, gap / dt);
   }
   w.pose.velocity_m_s = v * dir_ + transverse_;

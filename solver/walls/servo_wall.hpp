@@ -26,6 +26,7 @@
 // the cap well below the particles' settling speeds, e.g. 0.05-0.2 m/s), and with no contact the
 // wall approaches at the cap.
 #include <memory>
+#include <optional>
 
 #include "solver/walls/wall.hpp"
 
@@ -53,15 +54,14 @@ class Servo final : public WallMotion {
   double alpha() const { return alpha_; }
   // A seat: the wall origin never moves past `point` along the servo direction (a shear box's
   // upper ring rests on the lower ring and can only lift off it). Without a seat it travels freely.
-  void set_seat(const Vec3& point) { seat_ = point; has_seat_ = true; }
+  void set_seat(const Vec3& point) { seat_ = point; }
 
  private:
   Vec3 dir_;
   double target_, v_max_, alpha_;
   double area_ = 0.0;
   Vec3 transverse_ = Vec3::Zero();
-  Vec3 seat_ = Vec3::Zero();
-  bool has_seat_ = false;
+  std::optional<Vec3> seat_;
 };
 
 using ServoWall = Servo;

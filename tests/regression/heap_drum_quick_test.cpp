@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <numbers>
 
 #include "tests/support/scene_runs.hpp"
@@ -14,15 +13,14 @@
 namespace seedcal {
 namespace {
 
+using testing::expect_out_files;
 using testing::expect_run_report;
 using testing::run_quick_scene;
 
 TEST(PilingQuick, HeapHasASensibleAngle) {
   const auto j = run_quick_scene("piling", "--seed 1", "piling");
   expect_run_report(j);
-  const std::string out = j["out_dir"];
-  EXPECT_TRUE(std::filesystem::exists(out + "/piling_profile.csv"));
-  EXPECT_TRUE(std::filesystem::exists(out + "/piling.svg"));
+  expect_out_files(j, {"piling_profile.csv", "piling.svg"});
   const double angle = j["angle_of_repose_deg"].get<double>();
   std::printf("piling quick: %.1f deg (laboratory 31.76, sd 1.16), %zu sectors, heap %.1f mm, %.0f CPU s\n", angle,
               j["sector_angles_deg"].size(), 1000.0 * j["heap_height_m"].get<double>(), j["cpu_seconds"].get<double>());
@@ -39,9 +37,7 @@ TEST(PilingQuick, HeapHasASensibleAngle) {
 TEST(DrumQuick, SurfaceHasASensibleAngleAndTheRigsNumbers) {
   const auto j = run_quick_scene("drum", "--seed 1", "drum");
   expect_run_report(j);
-  const std::string out = j["out_dir"];
-  EXPECT_TRUE(std::filesystem::exists(out + "/drum_surface.csv"));
-  EXPECT_TRUE(std::filesystem::exists(out + "/drum.svg"));
+  expect_out_files(j, {"drum_surface.csv", "drum.svg"});
   const double angle = j["dynamic_angle_of_repose_deg"].get<double>();
   std::printf("drum quick, 5 rpm: %.1f deg (sd over the frames %.1f; the paper's simulation 43.80), %.0f CPU s\n", angle,
               j["dynamic_angle_frames_sd_deg"].get<double>(), j["cpu_seconds"].get<double>());

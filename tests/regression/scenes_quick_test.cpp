@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "tests/support/scene_runs.hpp"
@@ -12,6 +11,7 @@
 namespace seedcal {
 namespace {
 
+using testing::expect_out_files;
 using testing::expect_run_report;
 using testing::run_quick_scene;
 
@@ -21,8 +21,7 @@ TEST(ScenesQuick, DirectShearStrengthIsSensibleAndRisesWithFriction) {
     const auto a = run_quick_scene("direct_shear", "--seed " + std::to_string(s) + " --set seed_seed.static_friction=0.1", "ds-lo" + std::to_string(s));
     const auto b = run_quick_scene("direct_shear", "--seed " + std::to_string(s) + " --set seed_seed.static_friction=1.0", "ds-hi" + std::to_string(s));
     expect_run_report(a);
-    EXPECT_TRUE(std::filesystem::exists(a["out_dir"].get<std::string>() + "/direct_shear_curve.csv"));
-    EXPECT_TRUE(std::filesystem::exists(a["out_dir"].get<std::string>() + "/direct_shear.svg"));
+    expect_out_files(a, {"direct_shear_curve.csv", "direct_shear.svg"});
     // The lid holds the normal stress to 2 % on average during shear.
     EXPECT_NEAR(a["mean_normal_stress_pa"].get<double>() / 2e5, 1.0, 0.02);
     // The upper ring rests on the lower one and may lift (1-2 mm by 4.5 mm of travel on these
@@ -67,7 +66,7 @@ TEST(ScenesQuick, BulkDensityIsSensible) {
   // A random packing of seeds has a solid fraction between 0.4 and 0.7.
   EXPECT_GT(j["solid_fraction"].get<double>(), 0.4);
   EXPECT_LT(j["solid_fraction"].get<double>(), 0.7);
-  EXPECT_TRUE(std::filesystem::exists(j["out_dir"].get<std::string>() + "/bulk_density.svg"));
+  expect_out_files(j, {"bulk_density.svg"});
 }
 
 TEST(ScenesQuick, FreeDropRepeatsReportMeanSdAndSamples) {

@@ -1,8 +1,11 @@
 #pragma once
 // Runs a shipped Jinong 1 scene at `quick` fidelity through the CLI and reads its metrics.json
-// (with the output directory under "out_dir"), and checks the run report every scene writes.
+// (with the output directory under "out_dir"), and checks the run report and the files every scene
+// writes.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <initializer_list>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -26,6 +29,12 @@ inline void expect_run_report(const nlohmann::json& j) {
   for (const char* k : {"cpu_seconds", "wall_seconds", "steps", "bodies", "spheres", "stop_reason", "provenance"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["status"], "ok");
+}
+
+// The scene's raw data and picture exist in its output directory.
+inline void expect_out_files(const nlohmann::json& j, std::initializer_list<const char*> names) {
+  const std::string out = j["out_dir"];
+  for (const char* n : names) EXPECT_TRUE(std::filesystem::exists(out + "/" + n)) << out << "/" << n;
 }
 
 }  // namespace seedcal::testing
