@@ -35,6 +35,8 @@ class VerletList {
   std::vector<Vec3>& rolling() { return rolling_; }
   std::size_t builds() const { return builds_; }
   double skin_m() const { return skin_m_; }
+  // Sphere centres at the last build (empty after renumber(): the next check must rebuild).
+  const std::vector<Vec3>& built_at() const { return built_at_; }
 
  private:
   CellGrid grid_;

@@ -33,10 +33,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const bool lever_com = s.options_.contact.cdt_lever_from_centre_of_mass;
   BodyState& B = s.bodies_;
   // Dashpots use the predicted end-of-step velocities, springs the half-step ones
-  // (contact/hertz_mindlin.hpp).
-  const std::vector<Vec3>& v_end = s.velocity_end_;
-  const std::vector<Vec3>& w_end = s.angular_velocity_end_;
-  const SphereState& S = s.spheres_;
+  // (contact/hertz_mindlin.hpp); both come from the packed views (sim/contact_view.hpp).
+  const SphereView* __restrict SV = s.sphere_view_.data();
+  const BodyView* __restrict BV = s.body_view_.data();
   const InteractionTable& table = s.table_;
   const std::size_t nb = B.size();
   const std::size_t nw = s.walls_.size();
@@ -64,18 +63,20 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; compute_forces() turns the
   // body's total into its rolling torque (contact/rolling_cdt.hpp).
+  BodyAccumulator zero;
+  zero.force_n.setZero();
+  zero.torque_n_m.setZero();
+  zero.roll_capacity_n_m = 0.0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     int t = 0;
 #ifdef _OPENMP
     t = omp_get_thread_num();
 #endif
-    Vec3* __restrict F = s.thread_force_[static_cast<std::size_t>(t)].data();
-    Vec3* __restrict T = s.thread_torque_[static_cast<std::size_t>(t)].data();
+    BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
     Vec3* __restrict WF = s.thread_wall_force_[static_cast<std::size_t>(t)].data();
     Vec3* __restrict WT = s.thread_wall_torque_[static_cast<std::size_t>(t)].data();
-    std::fill(F, F + nb, Vec3::Zero());
-    std::fill(T, T + nb, Vec3::Zero());
+    std::fill(A, A + nb, zero);
     std::fill(WF, WF + nw, Vec3::Zero());
     std::fill(WT, WT + nw, Vec3::Zero());
     double* WK = s.thread_wall_stiffness_[static_cast<std::size_t>(t)].data();
@@ -84,11 +85,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     std::fill(WC, WC + nw, 0);
     // A private copy: the per-contact updates must not share a cache line between threads.
     ThreadStats st = tstats[static_cast<std::size_t>(t)];
-    double* RC = nullptr;
     std::vector<Simulation::CdtWallShare>* CW = nullptr;
     if constexpr (RM == RollingModel::cdt) {
-      RC = s.thread_roll_capacity_[static_cast<std::size_t>(t)].data();
-      std::fill(RC, RC + nb, 0.0);
       CW = &s.thread_cdt_wall_[static_cast<std::size_t>(t)];
       CW->clear();
     }
@@ -101,16 +99,17 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       if constexpr (NM == NormalModel::hmnr) {
         int n = 0;
         for (std::uint32_t k = a; k < e; ++k) {
-          const double rs = S.radius_m[si[k]] + S.radius_m[sj[k]];
-          if ((S.position_m[sj[k]] - S.position_m[si[k]]).squaredNorm() < rs * rs) ++n;
+          const double rs = SV[si[k]].radius_m + SV[sj[k]].radius_m;
+          if ((SV[sj[k]].position_m - SV[si[k]].position_m).squaredNorm() < rs * rs) ++n;
         }
         scale = hmnr_damping_scale(n);
       }
       int touching = 0;
       for (std::uint32_t k = a; k < e; ++k) {
-        const std::uint32_t i = si[k], j = sj[k];
-        const double ri = S.radius_m[i], rj = S.radius_m[j];
-        const Vec3 d = S.position_m[j] - S.position_m[i];
+        const SphereView& Si = SV[si[k]];
+        const SphereView& Sj = SV[sj[k]];
+        const double ri = Si.radius_m, rj = Sj.radius_m;
+        const Vec3 d = Sj.position_m - Si.position_m;
         const double dist2 = d.squaredNorm();
         const double rs = ri + rj;
         if (dist2 >= rs * rs) {
@@ -122,36 +121,40 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const double dist = std::sqrt(dist2);
         const Vec3 normal = dist > 0.0 ? Vec3(d * (1.0 / dist)) : Vec3::UnitZ();
         const double overlap = rs - dist;
-        const std::uint32_t bi = S.body[i], bj = S.body[j];
-        const Vec3 cp = S.position_m[i] + (ri - 0.5 * overlap) * normal;
-        const Vec3 rci = cp - B.position_m[bi];
-        const Vec3 rcj = cp - B.position_m[bj];
-        const Vec3& wi = B.angular_velocity[bi];
-        const Vec3& wj = B.angular_velocity[bj];
-        const Vec3 vrel = (B.velocity_m_s[bi] + wi.cross(rci)) - (B.velocity_m_s[bj] + wj.cross(rcj));
-        const Vec3 vrel_end = (v_end[bi] + w_end[bi].cross(rci)) - (v_end[bj] + w_end[bj].cross(rcj));
-        const PairConstants& pc = table.pair(S.material[i], S.material[j]);
-        const double mi = B.mass_kg[bi], mj = B.mass_kg[bj];
-        const ContactKinematics kin{normal, overlap, ri * rj / rs, 1.0 / (B.inv_mass[bi] + B.inv_mass[bj]),
+        const std::uint32_t bi = Si.body, bj = Sj.body;
+        const Vec3 cp = Si.position_m + (ri - 0.5 * overlap) * normal;
+        const Vec3 rci = cp - Si.body_position_m;
+        const Vec3 rcj = cp - Sj.body_position_m;
+        const BodyView& Bi = BV[bi];
+        const BodyView& Bj = BV[bj];
+        const Vec3& wi = Bi.angular_velocity;
+        const Vec3& wj = Bj.angular_velocity;
+        const Vec3 vrel = (Bi.velocity_m_s + wi.cross(rci)) - (Bj.velocity_m_s + wj.cross(rcj));
+        const Vec3 vrel_end = (Bi.velocity_end_m_s + Bi.angular_velocity_end.cross(rci)) -
+                              (Bj.velocity_end_m_s + Bj.angular_velocity_end.cross(rcj));
+        const PairConstants& pc = table.pair(Si.material, Sj.material);
+        const ContactKinematics kin{normal, overlap, ri * rj / rs, 1.0 / (Bi.inv_mass + Bj.inv_mass),
                                     vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, tang[k], dt, scale, clip);
-        F[bi] += cf.force_on_i_n;
-        F[bj] -= cf.force_on_i_n;
-        T[bi] += rci.cross(cf.force_on_i_n);
-        T[bj] -= rcj.cross(cf.force_on_i_n);
+        BodyAccumulator& Ai = A[bi];
+        BodyAccumulator& Aj = A[bj];
+        Ai.force_n += cf.force_on_i_n;
+        Aj.force_n -= cf.force_on_i_n;
+        Ai.torque_n_m += rci.cross(cf.force_on_i_n);
+        Aj.torque_n_m -= rcj.cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
           const double c = pc.rolling_friction * std::abs(cf.normal_force_n);
-          RC[bi] += c * (lever_com ? rci.norm() : ri - 0.5 * overlap);
-          RC[bj] += c * (lever_com ? rcj.norm() : rj - 0.5 * overlap);
+          Ai.roll_capacity_n_m += c * (lever_com ? rci.norm() : ri - 0.5 * overlap);
+          Aj.roll_capacity_n_m += c * (lever_com ? rcj.norm() : rj - 0.5 * overlap);
         } else if constexpr (RM == RollingModel::epsd) {
-          const double ii = B.principal_inertia[bi].mean() + mi * rci.squaredNorm();
-          const double ij = B.principal_inertia[bj].mean() + mj * rcj.squaredNorm();
-          const EpsdInput in{normal, wi - wj, w_end[bi] - w_end[bj], pc.rolling_friction,
-                             cf.normal_force_n, cf.normal_stiffness_n_m, kin.r_star_m,
-                             ii * ij / (ii + ij), eta_r, dt};
+          const double ii = B.principal_inertia[bi].mean() + B.mass_kg[bi] * rci.squaredNorm();
+          const double ij = B.principal_inertia[bj].mean() + B.mass_kg[bj] * rcj.squaredNorm();
+          const EpsdInput in{normal, wi - wj, Bi.angular_velocity_end - Bj.angular_velocity_end,
+                             pc.rolling_friction, cf.normal_force_n, cf.normal_stiffness_n_m,
+                             kin.r_star_m, ii * ij / (ii + ij), eta_r, dt};
           const Vec3 tau = epsd_torque(in, roll[k]);
-          T[bi] += tau;
-          T[bj] -= tau;
+          Ai.torque_n_m += tau;
+          Aj.torque_n_m -= tau;
         }
         st.note(overlap, cf.normal_force_n, std::min(ri, rj), ri <= rj ? bi : bj);
       }
@@ -170,8 +173,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         int n = 0;
         WallHit hit;
         for (std::uint32_t k = a; k < e; ++k) {
-          const double r = S.radius_m[ws[k]];
-          if (shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, S.position_m[ws[k]]),
+          const double r = SV[ws[k]].radius_m;
+          if (shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, SV[ws[k]].position_m),
                             r, hit) && hit.distance < r)
             ++n;
         }
@@ -179,10 +182,10 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       }
       int touching = 0;
       for (std::uint32_t k = a; k < e; ++k) {
-        const std::uint32_t i = ws[k];
-        const double r = S.radius_m[i];
+        const SphereView& Si = SV[ws[k]];
+        const double r = Si.radius_m;
         WallHit hit;
-        if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, S.position_m[i]), r,
+        if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, Si.position_m), r,
                            hit) || hit.distance >= r) {
           wtang[k].setZero();
           if constexpr (RM == RollingModel::epsd) wroll[k].setZero();
@@ -192,17 +195,19 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const double overlap = r - hit.distance;
         const Vec3 normal = wall.pose.orientation * hit.normal;
         const Vec3 cp = wall.pose.origin_m + wall.pose.orientation * hit.point;
-        const std::uint32_t b = S.body[i];
-        const Vec3 rc = cp - B.position_m[b];
-        const Vec3& w = B.angular_velocity[b];
+        const std::uint32_t b = Si.body;
+        const Vec3 rc = cp - Si.body_position_m;
+        const BodyView& Bb = BV[b];
+        const Vec3& w = Bb.angular_velocity;
         const Vec3 v_wall = wall.velocity_at(cp);
-        const Vec3 vrel = B.velocity_m_s[b] + w.cross(rc) - v_wall;
-        const Vec3 vrel_end = v_end[b] + w_end[b].cross(rc) - v_wall;
-        const PairConstants& pc = table.pair(S.material[i], wall.material);
+        const Vec3 vrel = Bb.velocity_m_s + w.cross(rc) - v_wall;
+        const Vec3 vrel_end = Bb.velocity_end_m_s + Bb.angular_velocity_end.cross(rc) - v_wall;
+        const PairConstants& pc = table.pair(Si.material, wall.material);
         const ContactKinematics kin{normal, overlap, r, B.mass_kg[b], vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, wtang[k], dt, scale, clip);
-        F[b] += cf.force_on_i_n;
-        T[b] += rc.cross(cf.force_on_i_n);
+        BodyAccumulator& Ab = A[b];
+        Ab.force_n += cf.force_on_i_n;
+        Ab.torque_n_m += rc.cross(cf.force_on_i_n);
         WF[ww[a]] -= cf.force_on_i_n;
         WK[ww[a]] += cf.normal_stiffness_n_m;
         ++WC[ww[a]];
@@ -211,15 +216,15 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
           // plate feels it as a torque about its origin).
           const double c = pc.rolling_friction * std::abs(cf.normal_force_n) * (lever_com ? rc.norm() : hit.distance);
-          RC[b] += c;
+          Ab.roll_capacity_n_m += c;
           CW->push_back({ww[a], b, c});
         } else if constexpr (RM == RollingModel::epsd) {
           const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
           const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s,
-                             w_end[b] - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
+                             Bb.angular_velocity_end - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
                              cf.normal_force_n, cf.normal_stiffness_n_m, r, ib, eta_r, dt};
           const Vec3 tau = epsd_torque(in, wroll[k]);
-          T[b] += tau;
+          Ab.torque_n_m += tau;
           WT[ww[a]] -= tau;
         }
         st.note(overlap, cf.normal_force_n, r, b);

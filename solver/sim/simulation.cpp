@@ -112,15 +112,62 @@ double Simulation::rayleigh_time_step_s() const {
   return dt;
 }
 
+namespace {
+// Sphere i of body b at the body's pose (world centre).
+inline Vec3 sphere_centre(const Vec3& body_position, const Quat& q, const Vec3& offset) {
+  return offset.isZero(0.0) ? body_position : Vec3(body_position + q * offset);
+}
+}  // namespace
+
 void Simulation::update_sphere_positions() {
   const std::size_t n = spheres_.size();
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t b = spheres_.body[i];
-    const Vec3& off = spheres_.offset_body_m[i];
-    spheres_.position_m[i] = off.isZero(0.0) ? bodies_.position_m[b]
-                                             : Vec3(bodies_.position_m[b] + bodies_.orientation[b] * off);
+    spheres_.position_m[i] =
+        sphere_centre(bodies_.position_m[b], bodies_.orientation[b], spheres_.offset_body_m[i]);
   }
+}
+
+void Simulation::refresh_views(double h) {
+  const std::size_t nb = bodies_.size(), ns = spheres_.size();
+  body_view_.resize(nb);
+  sphere_view_.resize(ns);
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
+  for (std::size_t b = 0; b < nb; ++b) {
+    BodyView& v = body_view_[b];
+    v.velocity_m_s = bodies_.velocity_m_s[b];
+    v.angular_velocity = bodies_.angular_velocity[b];
+    v.velocity_end_m_s = bodies_.velocity_m_s[b] + (h * bodies_.inv_mass[b]) * bodies_.force_n[b];
+    v.angular_velocity_end =
+        h == 0.0 ? bodies_.angular_velocity[b]
+                 : angular_velocity_from_momentum(
+                       bodies_.orientation[b], bodies_.inv_inertia[b],
+                       Vec3(bodies_.angular_momentum[b] + h * bodies_.torque_n_m[b]),
+                       bodies_.isotropic[b] != 0);
+    v.inv_mass = bodies_.inv_mass[b];
+    for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i) {
+      SphereView& sv = sphere_view_[i];
+      sv.position_m = spheres_.position_m[i];
+      sv.radius_m = spheres_.radius_m[i];
+      sv.body_position_m = bodies_.position_m[b];
+      sv.body = static_cast<std::uint32_t>(b);
+      sv.material = spheres_.material[i];
+    }
+  }
+}
+
+void Simulation::size_thread_buffers() {
+  const auto t = static_cast<std::size_t>(options_.threads);
+  const std::size_t nb = bodies_.size(), nw = walls_.size();
+  thread_body_acc_.resize(t);
+  for (auto& acc : thread_body_acc_)
+    if (acc.size() < nb) acc.resize(nb);
+  thread_wall_force_.assign(t, std::vector<Vec3>(nw));
+  thread_wall_torque_.assign(t, std::vector<Vec3>(nw));
+  thread_wall_stiffness_.assign(t, std::vector<double>(nw));
+  thread_wall_contacts_.assign(t, std::vector<int>(nw));
+  thread_cdt_wall_.resize(t);
 }
 
 void Simulation::ensure_ready() {
@@ -128,15 +175,7 @@ void Simulation::ensure_ready() {
   double r_max = 0.0;
   for (double r : spheres_.radius_m) r_max = std::max(r_max, r);
   skin_m_ = options_.skin_m > 0.0 ? options_.skin_m : 0.2 * r_max;
-  const auto t = static_cast<std::size_t>(options_.threads);
-  thread_force_.assign(t, std::vector<Vec3>(bodies_.size()));
-  thread_torque_.assign(t, std::vector<Vec3>(bodies_.size()));
-  thread_wall_force_.assign(t, std::vector<Vec3>(walls_.size()));
-  thread_wall_torque_.assign(t, std::vector<Vec3>(walls_.size()));
-  thread_wall_stiffness_.assign(t, std::vector<double>(walls_.size()));
-  thread_wall_contacts_.assign(t, std::vector<int>(walls_.size()));
-  thread_roll_capacity_.assign(t, std::vector<double>(bodies_.size()));
-  thread_cdt_wall_.assign(t, {});
+  size_thread_buffers();
   update_sphere_positions();
   rebuild_lists();
   ready_ = true;
@@ -178,62 +217,73 @@ inline void lap(bool on, std::chrono::steady_clock::time_point& t0, double& acc)
 }
 }  // namespace
 
-// Dashpot velocities: v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and L~_{n+1} = L_{n+1/2} + dt/2 T_n
-// (Groot & Warren 1997, eq. 17 with lambda = 1; see contact/hertz_mindlin.hpp), with F_n, T_n the
-// forces of the previous step still held by the bodies.
-void Simulation::predict_end_velocities(bool mid_step) {
-  const std::size_t nb = bodies_.size();
-  velocity_end_.resize(nb);
-  angular_velocity_end_.resize(nb);
-  const double h = mid_step ? 0.5 * options_.dt_s : 0.0;
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
-  for (std::size_t b = 0; b < nb; ++b) {
-    velocity_end_[b] = bodies_.velocity_m_s[b] + (h * bodies_.inv_mass[b]) * bodies_.force_n[b];
-    angular_velocity_end_[b] =
-        h == 0.0 ? bodies_.angular_velocity[b]
-                 : angular_velocity_from_momentum(
-                       bodies_.orientation[b], bodies_.inv_inertia[b],
-                       Vec3(bodies_.angular_momentum[b] + h * bodies_.torque_n_m[b]),
-                       bodies_.isotropic[b] != 0);
-  }
-}
-
-void Simulation::compute_forces(bool mid_step) {
+std::int64_t Simulation::compute_forces(bool mid_step) {
   ThreadStats total;
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  predict_end_velocities(mid_step);
+  // Inside step() the views were refreshed by first_half_step() (or after a spatial sort).
+  if (!mid_step) refresh_views(0.0);
   run_force_kernel(*this, options_.contact.normal, options_.contact.rolling, sphere_group_touch_,
                    wall_group_touch_, total);
   lap(prof, t0, profile_.contact_s);
   const std::size_t nb = bodies_.size();
-  const std::size_t nt = thread_force_.size();
+  const std::size_t nt = thread_body_acc_.size();
   const Vec3 g = options_.gravity_m_s2;
   const bool cdt = options_.contact.rolling == RollingModel::cdt;
   const bool cdt_limit = options_.contact.cdt_stop_limit;
+  const double dt = options_.dt_s;
   // The torques computed now act over the second half of this step and the first half of the
   // next (velocity Verlet): over dt from mid-step, over dt/2 when the velocities are at the force
   // time (the first call).
-  const double h = mid_step ? options_.dt_s : 0.5 * options_.dt_s;
+  const double h = mid_step ? dt : 0.5 * dt;
   if (cdt) cdt_torque_per_capacity_.resize(nb);
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
+  // Sum the threads' shares in thread order, settle the CDT torque, and (mid-step) apply the second
+  // half kick of velocity Verlet; the NaN guard rides along (lowest bad body reported).
+  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
+  // Raw pointers, so that the stores do not make the compiler reload the state.
+  std::vector<const BodyAccumulator*> acc_of(nt);
+  for (std::size_t t = 0; t < nt; ++t) acc_of[t] = thread_body_acc_[t].data();
+  const BodyAccumulator* const* __restrict acc_ptr = acc_of.data();
+  const double* __restrict mass = bodies_.mass_kg.data();
+  const double* __restrict inv_mass = bodies_.inv_mass.data();
+  const Quat* __restrict rot = bodies_.orientation.data();
+  const Vec3* __restrict inv_inertia = bodies_.inv_inertia.data();
+  const std::uint8_t* __restrict iso = bodies_.isotropic.data();
+  const Vec3* __restrict pos = bodies_.position_m.data();
+  Vec3* __restrict vel = bodies_.velocity_m_s.data();
+  Vec3* __restrict mom = bodies_.angular_momentum.data();
+  Vec3* __restrict omega = bodies_.angular_velocity.data();
+  Vec3* __restrict force = bodies_.force_n.data();
+  Vec3* __restrict torque = bodies_.torque_n_m.data();
+  Vec3* __restrict cdt_u = cdt ? cdt_torque_per_capacity_.data() : nullptr;
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
+    reduction(min : first_bad)
   for (std::size_t b = 0; b < nb; ++b) {
-    Vec3 f = bodies_.mass_kg[b] * g, tq = Vec3::Zero();
+    Vec3 f = mass[b] * g, tq = Vec3::Zero();
     double capacity = 0.0;
     for (std::size_t t = 0; t < nt; ++t) {
-      f += thread_force_[t][b];
-      tq += thread_torque_[t][b];
-      if (cdt) capacity += thread_roll_capacity_[t][b];
+      const BodyAccumulator& acc = acc_ptr[t][b];
+      f += acc.force_n;
+      tq += acc.torque_n_m;
+      if (cdt) capacity += acc.roll_capacity_n_m;
     }
     if (cdt) {
       Vec3 u = Vec3::Zero();
-      if (capacity > 0.0) u = cdt_limit ? cdt_stop_limited(bodies_.angular_momentum[b], tq, capacity, h)
-                                        : cdt_sign_direction(bodies_.angular_velocity[b]);
-      cdt_torque_per_capacity_[b] = u;
+      if (capacity > 0.0) u = cdt_limit ? cdt_stop_limited(mom[b], tq, capacity, h)
+                                        : cdt_sign_direction(omega[b]);
+      cdt_u[b] = u;
       tq += capacity * u;
     }
-    bodies_.force_n[b] = f;
-    bodies_.torque_n_m[b] = tq;
+    force[b] = f;
+    torque[b] = tq;
+    if (!mid_step) continue;
+    const Vec3 v = vel[b] + (0.5 * dt * inv_mass[b]) * f;
+    const Vec3 L = mom[b] + (0.5 * dt) * tq;
+    vel[b] = v;
+    mom[b] = L;
+    omega[b] = angular_velocity_from_momentum(rot[b], inv_inertia[b], L, iso[b] != 0);
+    const double probe = pos[b].sum() + v.sum() + L.sum();
+    if (!std::isfinite(probe)) first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
   }
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     Vec3 f = Vec3::Zero(), tq = Vec3::Zero();
@@ -303,6 +353,75 @@ void Simulation::compute_forces(bool mid_step) {
   }
   forces_valid_ = true;
   lap(prof, t0, profile_.reduce_s);
+  return first_bad == std::numeric_limits<std::int64_t>::max() ? -1 : first_bad;
+}
+
+bool Simulation::first_half_step(double dt) {
+  const std::size_t nb = bodies_.size(), ns = spheres_.size();
+  body_view_.resize(nb);
+  sphere_view_.resize(ns);
+  // Dashpot velocities: v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and L~_{n+1} = L_{n+1/2} + dt/2 T_n
+  // (Groot & Warren 1997, eq. 17 with lambda = 1; see contact/hertz_mindlin.hpp), with F_n, T_n
+  // the forces of the previous step still held by the bodies.
+  const double h = 0.5 * dt;
+  // Skin check against the centres at the last neighbour build (none after a renumbering).
+  const std::vector<Vec3>& built = pairs_.built_at();
+  const Vec3* __restrict ref = built.size() == ns ? built.data() : nullptr;
+  // Raw pointers: the stores to the views must not make the compiler reload the state.
+  Vec3* __restrict pos = bodies_.position_m.data();
+  Quat* __restrict rot = bodies_.orientation.data();
+  Vec3* __restrict vel = bodies_.velocity_m_s.data();
+  Vec3* __restrict mom = bodies_.angular_momentum.data();
+  Vec3* __restrict omega = bodies_.angular_velocity.data();
+  const Vec3* __restrict force = bodies_.force_n.data();
+  const Vec3* __restrict torque = bodies_.torque_n_m.data();
+  const double* __restrict inv_mass = bodies_.inv_mass.data();
+  const Vec3* __restrict inv_inertia = bodies_.inv_inertia.data();
+  const std::uint8_t* __restrict iso_flag = bodies_.isotropic.data();
+  const std::uint32_t* __restrict first = bodies_.first_sphere.data();
+  const Vec3* __restrict offset = spheres_.offset_body_m.data();
+  const double* __restrict radius = spheres_.radius_m.data();
+  const std::uint16_t* __restrict material = spheres_.material.data();
+  Vec3* __restrict centre = spheres_.position_m.data();
+  BodyView* __restrict bview = body_view_.data();
+  SphereView* __restrict sview = sphere_view_.data();
+  double max_moved_sq = 0.0;
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
+    reduction(max : max_moved_sq)
+  for (std::size_t b = 0; b < nb; ++b) {
+    // Velocity Verlet, first half: kick with the forces of the previous step, then drift.
+    const Vec3 v = vel[b] + (h * inv_mass[b]) * force[b];
+    const Vec3 L = mom[b] + h * torque[b];
+    const Vec3 p = pos[b] + dt * v;
+    const bool iso = iso_flag[b] != 0;
+    Quat q = rot[b];
+    free_rotation_step(q, L, inv_inertia[b], iso, dt);
+    const Vec3 w = angular_velocity_from_momentum(q, inv_inertia[b], L, iso);
+    vel[b] = v;
+    mom[b] = L;
+    pos[b] = p;
+    rot[b] = q;
+    omega[b] = w;
+    BodyView& bv = bview[b];
+    bv.velocity_m_s = v;
+    bv.angular_velocity = w;
+    bv.velocity_end_m_s = v + (h * inv_mass[b]) * force[b];
+    bv.angular_velocity_end =
+        angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso);
+    bv.inv_mass = inv_mass[b];
+    for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+      const Vec3 c = sphere_centre(p, q, offset[i]);
+      centre[i] = c;
+      SphereView& sv = sview[i];
+      sv.position_m = c;
+      sv.radius_m = radius[i];
+      sv.body_position_m = p;
+      sv.body = static_cast<std::uint32_t>(b);
+      sv.material = material[i];
+      if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
+    }
+  }
+  return ref == nullptr || max_moved_sq > 0.25 * pairs_.skin_m() * pairs_.skin_m();
 }
 
 bool Simulation::step() {
@@ -310,50 +429,26 @@ bool Simulation::step() {
   ensure_ready();
   if (time_s_ >= next_frame_s_) emit_frame();
   const double dt = options_.dt_s;
-  const std::size_t nb = bodies_.size();
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  // Velocity Verlet, first half: kick with the forces of the previous step, then drift.
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
-  for (std::size_t b = 0; b < nb; ++b) {
-    bodies_.velocity_m_s[b] += (0.5 * dt * bodies_.inv_mass[b]) * bodies_.force_n[b];
-    bodies_.angular_momentum[b] += (0.5 * dt) * bodies_.torque_n_m[b];
-    bodies_.position_m[b] += dt * bodies_.velocity_m_s[b];
-    free_rotation_step(bodies_.orientation[b], bodies_.angular_momentum[b],
-                       bodies_.inv_inertia[b], bodies_.isotropic[b] != 0, dt);
-    bodies_.angular_velocity[b] = angular_velocity_from_momentum(
-        bodies_.orientation[b], bodies_.inv_inertia[b], bodies_.angular_momentum[b],
-        bodies_.isotropic[b] != 0);
-  }
+  bool rebuild = first_half_step(dt);
   for (Wall& w : walls_)
     if (w.motion) w.motion->advance(w, time_s_, dt);
   time_s_ += dt;
   ++step_;
-  update_sphere_positions();
   lap(prof, t0, profile_.integrate_s);
   if (options_.sort_interval_steps > 0 && step_ % options_.sort_interval_steps == 0 &&
-      bodies_.size() >= 512)
-    sort_spatially();
-  if (pairs_.needs_rebuild(spheres_) || walls_moved_beyond_skin()) rebuild_lists();
-  lap(prof, t0, profile_.neighbour_s);
-  compute_forces(true);
-  if (prof) t0 = std::chrono::steady_clock::now();
-  // Second half kick with the new forces; the NaN guard rides along (lowest bad body reported).
-  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
-    reduction(min : first_bad)
-  for (std::size_t b = 0; b < nb; ++b) {
-    bodies_.velocity_m_s[b] += (0.5 * dt * bodies_.inv_mass[b]) * bodies_.force_n[b];
-    bodies_.angular_momentum[b] += (0.5 * dt) * bodies_.torque_n_m[b];
-    bodies_.angular_velocity[b] = angular_velocity_from_momentum(
-        bodies_.orientation[b], bodies_.inv_inertia[b], bodies_.angular_momentum[b],
-        bodies_.isotropic[b] != 0);
-    const double probe = bodies_.position_m[b].sum() + bodies_.velocity_m_s[b].sum() +
-                         bodies_.angular_momentum[b].sum();
-    if (!std::isfinite(probe)) first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+      bodies_.size() >= 512) {
+    if (sort_spatially()) {
+      refresh_views(0.5 * dt);
+      rebuild = false;  // the renumbering rebuilt the lists
+    }
   }
-  lap(prof, t0, profile_.integrate_s);
-  if (first_bad != std::numeric_limits<std::int64_t>::max() && failure_.status == RunStatus::ok) {
+  if (rebuild || walls_moved_beyond_skin()) rebuild_lists();
+  lap(prof, t0, profile_.neighbour_s);
+  // Forces at t_{n+1}, then the second half kick (inside compute_forces).
+  const std::int64_t first_bad = compute_forces(true);
+  if (first_bad >= 0 && failure_.status == RunStatus::ok) {
     const std::string step_note = step_size_note();
     fail(RunStatus::non_finite, first_bad,
          "position or velocity is not finite; likely cause: " +

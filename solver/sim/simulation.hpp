@@ -14,6 +14,7 @@
 #include "solver/core/body_state.hpp"
 #include "solver/core/materials.hpp"
 #include "solver/sim/body_def.hpp"
+#include "solver/sim/contact_view.hpp"
 #include "solver/sim/guards.hpp"
 #include "solver/walls/wall.hpp"
 #include "solver/walls/wall_contact_list.hpp"
@@ -120,16 +121,27 @@ class Simulation {
   friend struct ForceKernel;
   void update_sphere_positions();
   void ensure_ready();
+  // The first half of a velocity Verlet step for every body (kick, drift, rotation), fused with
+  // placing its spheres and refreshing the contact views. Returns true when some sphere moved
+  // more than half the skin since the neighbour list was built.
+  bool first_half_step(double dt);
   // `mid_step`: the bodies hold half-step velocities (inside step()), so the dashpots get the
-  // predicted end-of-step velocities; false when the velocities are already at the force time.
-  void compute_forces(bool mid_step);
-  void predict_end_velocities(bool mid_step);
+  // predicted end-of-step velocities, and the second half kick follows the force reduction in the
+  // same pass; false when the velocities are already at the force time (then nothing is kicked).
+  // Returns the lowest body whose state is not finite after the kick, or -1.
+  std::int64_t compute_forces(bool mid_step);
+  // Rebuilds the contact views from the state (sim/contact_view.hpp), with dashpot velocities
+  // predicted over h (0: the velocities are at the force time).
+  void refresh_views(double h);
+  // Grows the per-thread accumulators to the current body and wall counts.
+  void size_thread_buffers();
   bool check_guards(bool energy_now = false);
   // Calls the frame observer with the current state (FrameObserver) and schedules the next frame.
   void emit_frame();
   double energy_budget_j() const;
   void rebuild_lists();
-  void sort_spatially();
+  // Returns true when the bodies were renumbered (the neighbour lists are then rebuilt).
+  bool sort_spatially();
   void reorder_bodies(const std::vector<std::uint32_t>& old_of_new);
   bool walls_moved_beyond_skin() const;
   void fail(RunStatus s, std::int64_t body, std::string message);
@@ -145,21 +157,22 @@ class Simulation {
   StepStats stats_;
   std::vector<int> body_contacts_;
   std::vector<int> sphere_group_touch_, wall_group_touch_;
-  // CDT (contact/rolling_cdt.hpp): per thread, each body's rolling-torque capacity sum mu_r |Fn| R_i
-  // and the wall contacts' shares (the wall takes the reaction); per body, the torque per unit of
-  // capacity that compute_forces() settles on.
+  // CDT (contact/rolling_cdt.hpp): per thread, the wall contacts' shares of the rolling-torque
+  // capacity (the wall takes the reaction); per body, the torque per unit of capacity that
+  // compute_forces() settles on.
   struct CdtWallShare {
     std::uint32_t wall, body;
     double capacity_n_m;
   };
-  std::vector<std::vector<double>> thread_roll_capacity_;
   std::vector<std::vector<CdtWallShare>> thread_cdt_wall_;
   std::vector<Vec3> cdt_torque_per_capacity_;
-  // Predicted end-of-step velocity and spin per body, for the dashpots (contact/hertz_mindlin.hpp).
-  std::vector<Vec3> velocity_end_, angular_velocity_end_;
-  // Per-thread force/torque accumulators, reduced in thread order (deterministic for a given
-  // thread count).
-  std::vector<std::vector<Vec3>> thread_force_, thread_torque_;
+  // What the contact kernel reads (sim/contact_view.hpp): spheres and bodies, with the predicted
+  // end-of-step velocities for the dashpots (contact/hertz_mindlin.hpp).
+  std::vector<SphereView> sphere_view_;
+  std::vector<BodyView> body_view_;
+  // Per-thread force, torque and rolling-capacity accumulators (at least one per body), reduced
+  // in thread order (deterministic for a given thread count).
+  std::vector<std::vector<BodyAccumulator>> thread_body_acc_;
   std::vector<std::vector<Vec3>> thread_wall_force_, thread_wall_torque_;
   std::vector<std::vector<double>> thread_wall_stiffness_;
   std::vector<std::vector<int>> thread_wall_contacts_;

@@ -33,7 +33,7 @@ void permute(std::vector<T>& v, const std::vector<std::uint32_t>& old_of_new) {
 
 }  // namespace
 
-void Simulation::sort_spatially() {
+bool Simulation::sort_spatially() {
   const std::size_t nb = bodies_.size();
   Vec3 lo = bodies_.position_m[0], hi = lo;
   for (const Vec3& p : bodies_.position_m) {
@@ -55,9 +55,10 @@ void Simulation::sort_spatially() {
                    [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
   bool identity = true;
   for (std::size_t k = 0; k < nb && identity; ++k) identity = old_of_new[k] == k;
-  if (identity) return;
+  if (identity) return false;
 
   reorder_bodies(old_of_new);
+  return true;
 }
 
 // Keeps the bodies listed in old_of_new, in that order; any body not listed is removed. Spheres
@@ -101,9 +102,7 @@ void Simulation::reorder_bodies(const std::vector<std::uint32_t>& old_of_new) {
   if (ready_) {
     pairs_.renumber(sphere_new_of_old, spheres_);
     wall_pairs_.renumber(sphere_new_of_old, spheres_);
-    const auto t = static_cast<std::size_t>(options_.threads);
-    thread_force_.assign(t, std::vector<Vec3>(nb));
-    thread_torque_.assign(t, std::vector<Vec3>(nb));
+    size_thread_buffers();
     rebuild_lists();
   }
 }

@@ -1,0 +1,47 @@
+#pragma once
+// Packed per-step copies of what the contact kernel reads and writes, one cache-line-aligned
+// record per sphere or body.
+//
+// The state itself is kept as structure-of-arrays (core/body_state.hpp): the integrator streams
+// through one field at a time. The contact kernel instead visits two bodies per pair in
+// neighbour-list order and needs about ten fields of each. Read from the separate arrays, that is
+// one cache line per field and body; from these records it is one line per sphere, two per body
+// and one per accumulator. The records are refreshed in the integrator's body pass, which already
+// has every field in registers, so they cost one streaming write per body and step. The
+// arithmetic on them is the same as on the arrays: results do not change.
+#include <cstdint>
+
+#include "solver/core/vec.hpp"
+
+namespace seedcal {
+
+// One sphere, as the contact kernel sees it (64 bytes).
+struct alignas(64) SphereView {
+  Vec3 position_m;       // world centre
+  double radius_m;
+  Vec3 body_position_m;  // its body's centre of mass (contact lever arms)
+  std::uint32_t body;
+  std::uint16_t material;
+};
+
+// One body's velocities, as the contact kernel sees it (two cache lines).
+struct alignas(64) BodyView {
+  Vec3 velocity_m_s;          // half-step velocity (spring increments)
+  Vec3 angular_velocity;      // half-step angular velocity, world
+  Vec3 velocity_end_m_s;      // predicted end-of-step velocity (dashpots)
+  Vec3 angular_velocity_end;  // predicted end-of-step angular velocity, world
+  double inv_mass;            // 1/kg
+};
+
+// One body's share of the contact forces, accumulated by one thread (64 bytes).
+struct alignas(64) BodyAccumulator {
+  Vec3 force_n;
+  Vec3 torque_n_m;
+  double roll_capacity_n_m;  // CDT: sum mu_r |Fn| R_i over the body's contacts
+};
+
+static_assert(sizeof(SphereView) == 64);
+static_assert(sizeof(BodyView) == 128);
+static_assert(sizeof(BodyAccumulator) == 64);
+
+}  // namespace seedcal
