@@ -13,7 +13,9 @@ cp "$decks"/in.settled_bed "$decks"/in.clump_bed "$decks"/clump9.txt "$out/"
 cd "$out"
 
 loop_time() { grep "Loop time" "$1" | tail -1 | awk '{print $4}'; }
-contacts() { awk '/Step +Atoms +KinEng +c_cs/{f=1;next} f&&/^ +[0-9]/{c=$4} END{print c}' "$1"; }
+# The thermo column of compute cs is headed "cs" (LIGGGHTS 3.8) or "c_cs"; the last row of the
+# timed run holds the bed's total contact count.
+contacts() { awk '/Step +Atoms +KinEng +(c_)?cs/{f=1;next} f&&/^ +[0-9]/{c=$4} END{print c+0}' "$1"; }
 
 run_liggghts() {  # name deck settle np
   local name=$1 deck=$2 settle=$3 np=$4
