@@ -3,9 +3,11 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "calibrate/cli/errors.hpp"
@@ -15,9 +17,12 @@ namespace seedcal {
 void write_file_atomic(const std::string& path, const std::string& content) {
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (fd < 0) throw RunFailed("cannot write " + tmp + ": " + std::strerror(errno));
+  // A unique temporary name next to the target (mkstemp: O_EXCL, so two writers of one path, in
+  // one process or several, never share a temporary file); the rename is atomic within the folder.
+  std::string tmp = path + ".tmp.XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) throw RunFailed("cannot write " + path + ".tmp.*: " + std::strerror(errno));
+  ::fchmod(fd, 0644);  // mkstemp creates 0600; the outputs are plain readable files
   std::size_t done = 0;
   while (done < content.size()) {
     const ssize_t n = ::write(fd, content.data() + done, content.size() - done);

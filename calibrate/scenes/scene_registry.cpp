@@ -89,6 +89,9 @@ nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
     const OutputConfig output = read_output(root);
     SceneContext c = ctx;
     c.seed = ctx.seed + static_cast<std::uint64_t>(k);
+    // The scene's files (its CSV, picture and trajectory) come from the first run, the one whose
+    // seed the provenance names; the later runs only add their index to the statistics.
+    if (k > 0) c.out_dir.clear();
     // The trajectory of the first run (its seed is the one metrics.json's provenance names). The
     // writer finishes (writes the XDMF) when it goes out of scope, also when the runner throws.
     std::optional<TrajectoryWriter> trajectory;
@@ -141,7 +144,10 @@ nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
   out["wall_seconds"] = wall;
   out["steps"] = steps;
   out["repeats"] = runs.size();
-  if (runs.size() > 1) out["runs"] = runs;
+  if (runs.size() > 1) {
+    out["runs"] = runs;
+    out["files_from_seed"] = ctx.seed;
+  }
   out.erase("seed");
   return out;
 }

@@ -145,11 +145,29 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   // Peak of the curve smoothed by a centred moving average over `smoothing_m` of displacement:
   // the instantaneous wall force of a coarse sample carries contact-scale spikes that the lab's
   // load cell and its reading rate average out.
+  // The ring moves one way, so the samples are sorted by displacement and each window is a range
+  // [lo, hi) that only moves forward (linear in the samples, not quadratic); the window's samples
+  // are summed in order.
+  const auto within = [&](std::size_t m, std::size_t k) {
+    return std::abs(res.curve[m].displacement_m - res.curve[k].displacement_m) <= 0.5 * spec.smoothing_m;
+  };
+  const bool sorted = std::is_sorted(res.curve.begin(), res.curve.end(), [](const ShearSample& a, const ShearSample& b) {
+    return a.displacement_m < b.displacement_m;
+  });
+  std::size_t lo = 0, hi = 0;
   for (std::size_t k = 0; k < res.curve.size(); ++k) {
+    if (sorted) {
+      while (!within(lo, k)) ++lo;
+      if (hi < k + 1) hi = k + 1;
+      while (hi < res.curve.size() && within(hi, k)) ++hi;
+    } else {
+      lo = 0;
+      hi = res.curve.size();
+    }
     double sum = 0.0;
     int n_avg = 0;
-    for (std::size_t m = 0; m < res.curve.size(); ++m)
-      if (std::abs(res.curve[m].displacement_m - res.curve[k].displacement_m) <= 0.5 * spec.smoothing_m) {
+    for (std::size_t m = lo; m < hi; ++m)
+      if (within(m, k)) {
         sum += res.curve[m].shear_stress_pa;
         ++n_avg;
       }
