@@ -61,10 +61,11 @@ struct StepStats {
 
 // Wall seconds spent in each phase of step(), accumulated when SimulationOptions::profile is on.
 struct StepProfile {
-  double integrate_s = 0.0;   // both half kicks, drift, rotation, wall motion, sphere positions
-  double neighbour_s = 0.0;   // rebuild check and rebuilds
+  double integrate_s = 0.0;   // first half kick, drift, rotation, sphere positions, contact
+                              // views, skin check, wall motion
+  double neighbour_s = 0.0;   // spatial sort and neighbour-list rebuilds
   double contact_s = 0.0;     // contact force kernel
-  double reduce_s = 0.0;      // per-thread force reduction, statistics
+  double reduce_s = 0.0;      // per-thread force reduction, CDT torque, second half kick, guards
 };
 
 class Simulation {
