@@ -160,16 +160,7 @@ void VerletList::renumber(const std::vector<std::uint32_t>& new_of_old, const Sp
     tangential_[k] = e[k].t;
     if (rolling) rolling_[k] = e[k].r;
   }
-  built_at_.clear();  // forces the next needs_rebuild() to say yes
-}
-
-bool VerletList::needs_rebuild(const SphereState& spheres) const {
-  if (built_at_.size() != spheres.size()) return true;
-  const double limit2 = 0.25 * skin_m_ * skin_m_;
-  const std::size_t n = spheres.size();
-  for (std::size_t i = 0; i < n; ++i)
-    if ((spheres.position_m[i] - built_at_[i]).squaredNorm() > limit2) return true;
-  return false;
+  built_at_.clear();  // forces the next skin check to rebuild
 }
 
 }  // namespace seedcal

@@ -19,7 +19,6 @@ class VerletList {
   // `keep_rolling`: allocate rolling-spring history (EPSD only). The result does not depend on
   // `threads` (chunks are concatenated in body order).
   void build(const SphereState& spheres, double skin_m, bool keep_rolling, int threads = 1);
-  bool needs_rebuild(const SphereState& spheres) const;
   // After the spheres were renumbered (new index = new_of_old[old index]; `spheres` is the new
   // state), carries the history over to the new numbering and re-sorts it by the new key, so the
   // next build() merges it as usual. A pair whose body order flips swaps i and j and negates its
@@ -35,8 +34,11 @@ class VerletList {
   std::vector<Vec3>& rolling() { return rolling_; }
   std::size_t builds() const { return builds_; }
   double skin_m() const { return skin_m_; }
-  // Sphere centres at the last build (empty after renumber(): the next check must rebuild).
+  // The skin check (done by the integrator's body pass, which already has every centre): the list
+  // must be rebuilt when a sphere moved more than half the skin since the last build, i.e. by more
+  // than rebuild_distance_sq() squared, or when built_at() is empty (after renumber()).
   const std::vector<Vec3>& built_at() const { return built_at_; }
+  double rebuild_distance_sq() const { return 0.25 * skin_m_ * skin_m_; }
 
  private:
   CellGrid grid_;

@@ -117,6 +117,27 @@ namespace {
 inline Vec3 sphere_centre(const Vec3& body_position, const Quat& q, const Vec3& offset) {
   return offset.isZero(0.0) ? body_position : Vec3(body_position + q * offset);
 }
+
+// The contact kernel's record of a body (sim/contact_view.hpp): half-step velocities and, for the
+// dashpots, v~ = v + h F / m with the given predicted angular velocity w~.
+inline void fill_body_view(BodyView& bv, const Vec3& v, const Vec3& w, const Vec3& w_end,
+                           const Vec3& force, double inv_mass, double h) {
+  bv.velocity_m_s = v;
+  bv.angular_velocity = w;
+  bv.velocity_end_m_s = v + (h * inv_mass) * force;
+  bv.angular_velocity_end = w_end;
+  bv.inv_mass = inv_mass;
+}
+
+// The contact kernel's record of a sphere of body b.
+inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius,
+                             const Vec3& body_position, std::size_t b, std::uint16_t material) {
+  sv.position_m = centre;
+  sv.radius_m = radius;
+  sv.body_position_m = body_position;
+  sv.body = static_cast<std::uint32_t>(b);
+  sv.material = material;
+}
 }  // namespace
 
 void Simulation::update_sphere_positions() {
@@ -135,25 +156,17 @@ void Simulation::refresh_views(double h) {
   sphere_view_.resize(ns);
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t b = 0; b < nb; ++b) {
-    BodyView& v = body_view_[b];
-    v.velocity_m_s = bodies_.velocity_m_s[b];
-    v.angular_velocity = bodies_.angular_velocity[b];
-    v.velocity_end_m_s = bodies_.velocity_m_s[b] + (h * bodies_.inv_mass[b]) * bodies_.force_n[b];
-    v.angular_velocity_end =
+    const Vec3 w_end =
         h == 0.0 ? bodies_.angular_velocity[b]
                  : angular_velocity_from_momentum(
                        bodies_.orientation[b], bodies_.inv_inertia[b],
                        Vec3(bodies_.angular_momentum[b] + h * bodies_.torque_n_m[b]),
                        bodies_.isotropic[b] != 0);
-    v.inv_mass = bodies_.inv_mass[b];
-    for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i) {
-      SphereView& sv = sphere_view_[i];
-      sv.position_m = spheres_.position_m[i];
-      sv.radius_m = spheres_.radius_m[i];
-      sv.body_position_m = bodies_.position_m[b];
-      sv.body = static_cast<std::uint32_t>(b);
-      sv.material = spheres_.material[i];
-    }
+    fill_body_view(body_view_[b], bodies_.velocity_m_s[b], bodies_.angular_velocity[b], w_end,
+                   bodies_.force_n[b], bodies_.inv_mass[b], h);
+    for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
+      fill_sphere_view(sphere_view_[i], spheres_.position_m[i], spheres_.radius_m[i],
+                       bodies_.position_m[b], b, spheres_.material[i]);
   }
 }
 
@@ -402,26 +415,17 @@ bool Simulation::first_half_step(double dt) {
     pos[b] = p;
     rot[b] = q;
     omega[b] = w;
-    BodyView& bv = bview[b];
-    bv.velocity_m_s = v;
-    bv.angular_velocity = w;
-    bv.velocity_end_m_s = v + (h * inv_mass[b]) * force[b];
-    bv.angular_velocity_end =
-        angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso);
-    bv.inv_mass = inv_mass[b];
+    fill_body_view(bview[b], v, w,
+                   angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso),
+                   force[b], inv_mass[b], h);
     for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
       const Vec3 c = sphere_centre(p, q, offset[i]);
       centre[i] = c;
-      SphereView& sv = sview[i];
-      sv.position_m = c;
-      sv.radius_m = radius[i];
-      sv.body_position_m = p;
-      sv.body = static_cast<std::uint32_t>(b);
-      sv.material = material[i];
+      fill_sphere_view(sview[i], c, radius[i], p, b, material[i]);
       if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
     }
   }
-  return ref == nullptr || max_moved_sq > 0.25 * pairs_.skin_m() * pairs_.skin_m();
+  return ref == nullptr || max_moved_sq > pairs_.rebuild_distance_sq();
 }
 
 bool Simulation::step() {
