@@ -5,10 +5,34 @@
 # instead of one for the executable, so that `ctest -j` runs long cases side by side.
 # COST: the entry's expected seconds in Release. `ctest -j` starts the costliest entries first; it
 # learns the costs after a run, but a clean clone (CI) has none and would start the longest last.
+
+# What every test compiles with (cmake/build_speed.cmake): the same macros whatever it links, so
+# that all of them can use seedcal_test_pch.
+add_library(seedcal_test_env INTERFACE)
+target_link_libraries(seedcal_test_env INTERFACE GTest::gtest OpenMP::OpenMP_CXX Eigen3::Eigen
+                      nlohmann_json::nlohmann_json)
+target_compile_definitions(seedcal_test_env INTERFACE
+                           $<TARGET_PROPERTY:NLopt::nlopt,INTERFACE_COMPILE_DEFINITIONS>
+                           $<$<BOOL:${MPI_CXX_FOUND}>:SEEDCAL_HAVE_MPI=1>)
+if(SEEDCAL_PCH)
+  add_library(seedcal_test_pch OBJECT ${PROJECT_SOURCE_DIR}/cmake/test_pch.cpp)
+  target_link_libraries(seedcal_test_pch PRIVATE seedcal_test_env seedcal_warnings)
+  target_precompile_headers(seedcal_test_pch PRIVATE
+    <gtest/gtest.h> <nlohmann/json.hpp> <Eigen/Dense>
+    <algorithm> <cmath> <cstdio> <filesystem> <fstream> <map> <memory> <sstream> <string> <vector>)
+endif()
+
 function(seedcal_add_test)
   cmake_parse_arguments(T "" "NAME;TIMEOUT;COST" "SOURCES;LIBS;LABELS;CASES" ${ARGN})
+  # The sanitizer build (preset asan) runs `ctest -LE slow`: it does not build the slow tests either.
+  if(NOT SEEDCAL_SLOW_TESTS AND "slow" IN_LIST T_LABELS)
+    return()
+  endif()
   add_executable(${T_NAME} ${T_SOURCES})
-  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} GTest::gtest GTest::gtest_main seedcal_warnings)
+  target_link_libraries(${T_NAME} PRIVATE ${T_LIBS} seedcal_test_env GTest::gtest_main seedcal_warnings)
+  if(SEEDCAL_PCH)
+    target_precompile_headers(${T_NAME} REUSE_FROM seedcal_test_pch)
+  endif()
   target_include_directories(${T_NAME} PRIVATE ${PROJECT_SOURCE_DIR})
   set_target_properties(${T_NAME} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   # End-to-end tests run the binary: build it first.

@@ -30,7 +30,7 @@ figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{font-size:.
 pre{background:#f6f6f6;padding:.6em;overflow-x:auto;font-size:.85em}a.csv{font-size:.85em}
 )";
 
-struct Writer {
+struct HtmlWriter {
   std::string out;
   int plot_count = 0;
 
@@ -98,7 +98,7 @@ std::string inline_svg(const std::string& svg, const std::string& id_prefix, con
 }
 
 std::string render_html(const Document& doc) {
-  Writer w;
+  HtmlWriter w;
   w.out = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" + escape_html(doc.title) +
           "</title>\n<style>\n" + kStyle + "</style>\n</head>\n<body>\n<h1>" + escape_html(doc.title) + "</h1>\n";
   for (const auto& line : doc.subtitle) w.out += "<p class=\"subtitle\">" + escape_html(line) + "</p>\n";

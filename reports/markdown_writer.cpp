@@ -27,7 +27,7 @@ std::string link(const std::string& path) {
   return out;
 }
 
-struct Writer {
+struct MarkdownWriter {
   std::string out;
   void cell(const std::string& text) {
     out += ' ';
@@ -85,7 +85,7 @@ std::string escape_markdown(std::string_view text) {
 }
 
 std::string render_markdown(const Document& doc) {
-  Writer w;
+  MarkdownWriter w;
   w.out = "# " + escape_markdown(doc.title) + "\n\n";
   for (const auto& line : doc.subtitle) w.out += escape_markdown(line) + "  \n";
   if (!doc.subtitle.empty()) w.out += "\n";

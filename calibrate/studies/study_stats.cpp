@@ -6,10 +6,6 @@
 #include <gsl/gsl_statistics_double.h>
 
 namespace seedcal {
-namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-}  // namespace
-
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 nlohmann::json sample_stats(const std::vector<double>& x) {

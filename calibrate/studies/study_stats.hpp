@@ -1,12 +1,16 @@
 #pragma once
 // Statistics the studies share: mean and sample sd of one metric over the runs of a repeated
 // scene (`run_scene_file` with repeats keeps every run under "runs"), failed runs left out.
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 namespace seedcal {
+
+// A statistic with too few values.
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // A finite number, or null (JSON has no NaN).
 nlohmann::json number_or_null(double v);

@@ -12,7 +12,6 @@
 namespace seedcal {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::vector<double> samples_of(const nlohmann::json& level) {
   std::vector<double> v;

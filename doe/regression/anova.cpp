@@ -7,11 +7,11 @@
 #include <map>
 
 #include "doe/core/errors.hpp"
+#include "doe/core/numbers.hpp"
 
 namespace seedcal::doe {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 AnovaRow make_row(std::string source, int df, double ss) {
   AnovaRow r{std::move(source), df, ss, df > 0 ? ss / df : kNaN, kNaN, kNaN};

@@ -6,12 +6,12 @@
 #include <numeric>
 
 #include "doe/core/errors.hpp"
+#include "doe/core/numbers.hpp"
 #include "doe/regression/least_squares.hpp"
 
 namespace seedcal::doe {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct Split {
   double low, high, effect;

@@ -6,11 +6,11 @@
 #include <gsl/gsl_cdf.h>
 
 #include "doe/core/errors.hpp"
+#include "doe/core/numbers.hpp"
 
 namespace seedcal::doe {
 
 namespace {
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // A column whose component orthogonal to the earlier columns is below this fraction of its own
 // norm is taken as aliased: 1e-10 is ~1e6 times double rounding (2.2e-16) times a generous
 // growth factor, and far below the smallest genuine ratio in NIST's Longley data (~1e-7).
