@@ -14,9 +14,14 @@ set(SEEDCAL_UNITY_BATCH 8 CACHE STRING "Files per unity batch")
 option(SEEDCAL_PCH "Share one precompiled header between the test executables" ON)
 option(SEEDCAL_SLOW_TESTS "Build the tests labelled slow (the sanitizer preset leaves them out)" ON)
 
+# seedcal_unity_build(target [BATCH n]): n files per batch, SEEDCAL_UNITY_BATCH by default.
 function(seedcal_unity_build target)
+  cmake_parse_arguments(U "" "BATCH" "" ${ARGN})
+  if(NOT U_BATCH)
+    set(U_BATCH ${SEEDCAL_UNITY_BATCH})
+  endif()
   if(SEEDCAL_UNITY)
-    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${SEEDCAL_UNITY_BATCH})
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${U_BATCH})
   endif()
 endfunction()
 

@@ -1,16 +1,17 @@
 #pragma once
 // Statistics the studies share: mean and sample sd of one metric over the runs of a repeated
 // scene (`run_scene_file` with repeats keeps every run under "runs"), failed runs left out.
-#include <limits>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "doe/core/numbers.hpp"
+
 namespace seedcal {
 
-// A statistic with too few values.
-inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A statistic with too few values: the same NaN as doe/'s.
+using doe::kNaN;
 
 // A finite number, or null (JSON has no NaN).
 nlohmann::json number_or_null(double v);
