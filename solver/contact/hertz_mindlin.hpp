@@ -26,9 +26,20 @@
 //     0.1 to 0.075-0.088 and from 0.01 to 0.002-0.005 (docs/stability.md); with v~_{n+1} the same
 //     runs give 0.092-0.100 and 0.0096-0.0102. The explicit dashpot stays stable for
 //     c dt / m < 2 (Heun's method on dv/dt = -c v / m), far above what the stable time step allows.
+//
+// Tangential spring. It is kept in the current tangent plane with its length preserved (the
+// contact frame rotates with the pair; Luding 2008, "Cohesive, frictional powders", sec. 2.2.3).
+// On sliding the total tangential force is capped at the Coulomb limit and the spring reset so
+// that the spring alone carries the limit force: the tangential damper then acts only while the
+// contact sticks, and the force is continuous when sliding stops. LIGGGHTS and LAMMPS instead set
+// the spring to carry the limit force plus the damping force, -(F_lim + c_t v_t) / S_t; early in
+// an impact, where the damping term alone exceeds the limit, that stretches the spring backwards
+// and the contact then under-shoots Coulomb friction (8 % too little tangential impulse for
+// e = 0.45 in tests/physics/oblique_impact_test.cpp).
 #include <cmath>
 
 #include "solver/contact/contact_model.hpp"
+#include "solver/contact/hertz_mindlin_lanes.hpp"
 #include "solver/core/materials.hpp"
 #include "solver/core/vec.hpp"
 
@@ -51,55 +62,25 @@ struct ContactForce {
   double normal_stiffness_n_m;  // Sn, for the EPSD rolling spring
 };
 
-// sqrt(5/6), the Hertz-Mindlin damping prefactor.
-inline constexpr double kSqrtFiveSixths = 0.91287092917527685576;
+using lanes::kSqrtFiveSixths;
 
+// One contact, in Eigen types; the formulas are those of contact/hertz_mindlin_lanes.hpp, which
+// the sphere-sphere kernel runs on several contacts at once.
 [[gnu::always_inline]] inline ContactForce hertz_mindlin(const PairConstants& c,
                                                         const ContactKinematics& k,
                                                         Vec3& tangential_disp_m, double dt_s,
                                                         double damping_scale, bool clip_attractive) {
-  const double sqrt_rd = std::sqrt(k.r_star_m * k.overlap_m);
-  const double sn = 2.0 * c.e_star_pa * sqrt_rd;
-  const double st = sn * c.sqrt_tangential_ratio * c.sqrt_tangential_ratio;  // 8 G* sqrt(R* d)
-  // -2 sqrt(5/6) beta >= 0 because beta <= 0.
-  const double damp = -2.0 * kSqrtFiveSixths * c.beta * damping_scale;
-  const double cn = damp * std::sqrt(sn * k.m_star_kg);
-  const double ct = cn * c.sqrt_tangential_ratio;  // = damp sqrt(S_t m*)
-
-  const Vec3 vt = k.v_rel_m_s - k.v_rel_m_s.dot(k.normal) * k.normal;  // spring increment
-  const double vn_end = k.v_rel_end_m_s.dot(k.normal);                  // > 0: approaching
-  const Vec3 vt_end = k.v_rel_end_m_s - vn_end * k.normal;               // dashpot
-
-  // Fn_elastic = 4/3 E* sqrt(R*) dn^1.5 = 2/3 Sn dn.
-  double fn = (2.0 / 3.0) * sn * k.overlap_m + cn * vn_end;
-  if (clip_attractive && fn < 0.0) fn = 0.0;
-
-  // Keep the tangential spring in the current tangent plane, preserving its length (the contact
-  // frame rotates with the pair; Luding 2008, "Cohesive, frictional powders", sec. 2.2.3).
-  const double len0_sq = tangential_disp_m.squaredNorm();
-  const double along = tangential_disp_m.dot(k.normal);
-  if (along != 0.0) {
-    tangential_disp_m -= along * k.normal;
-    const double len1_sq = len0_sq - along * along;
-    if (len1_sq > 0.0) tangential_disp_m *= std::sqrt(len0_sq / len1_sq);
-  }
-  tangential_disp_m += vt * dt_s;
-
-  // Tangential force on i opposes i's slip relative to j.
-  Vec3 ft = -st * tangential_disp_m - ct * vt_end;
-  const double ft_max = c.static_friction * std::abs(fn);
-  const double ft_sq = ft.squaredNorm();
-  if (ft_sq > ft_max * ft_max) {
-    // Sliding: cap the total at the Coulomb limit and reset the spring so that the spring alone
-    // carries the limit force; the tangential damper then acts only while the contact sticks, and
-    // the force is continuous when sliding stops. LIGGGHTS and LAMMPS instead set the spring to carry the limit force plus the damping force,
-    // -(F_lim + c_t v_t) / S_t; early in an impact, where the damping term alone exceeds the limit,
-    // that stretches the spring backwards and the contact then under-shoots Coulomb friction (8 %
-    // too little tangential impulse for e = 0.45 in tests/physics/oblique_impact_test.cpp).
-    ft *= ft_max / std::sqrt(ft_sq);
-    tangential_disp_m = st > 0.0 ? Vec3(ft * (-1.0 / st)) : Vec3::Zero();
-  }
-  return {-fn * k.normal + ft, fn, sn};
+  using V = lanes::V3<double>;
+  const auto v3 = [](const Vec3& v) { return V{v.x(), v.y(), v.z()}; };
+  const lanes::HmConstants<double> hc{c.e_star_pa, c.beta, c.static_friction,
+                                      c.sqrt_tangential_ratio};
+  V t = v3(tangential_disp_m);
+  const lanes::HmResult<double> r = lanes::hertz_mindlin_lanes<lanes::ScalarOps>(
+      hc, v3(k.normal), k.overlap_m, k.r_star_m, k.m_star_kg, v3(k.v_rel_m_s), v3(k.v_rel_end_m_s),
+      t, dt_s, damping_scale, clip_attractive);
+  tangential_disp_m = Vec3(t.x, t.y, t.z);
+  return {Vec3(r.force_on_i_n.x, r.force_on_i_n.y, r.force_on_i_n.z), r.normal_force_n,
+          r.normal_stiffness_n_m};
 }
 
 }  // namespace seedcal

@@ -3,12 +3,14 @@
 // a switch (no model tests inside the loops).
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "solver/contact/hertz_mindlin.hpp"
 #include "solver/contact/hmnr.hpp"
 #include "solver/contact/rolling_cdt.hpp"
 #include "solver/contact/rolling_epsd.hpp"
 #include "solver/sim/contact_forces.hpp"
+#include "solver/sim/pair_batch.hpp"
 #include "solver/sim/simulation.hpp"
 
 #ifdef _OPENMP
@@ -59,6 +61,36 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const std::size_t wgroups = wl.group_count();
   wall_group_touch.assign(wgroups, 0);
 
+  // Hertz-Mindlin with no rolling friction or CDT: touching sphere pairs go through the batch
+  // kernel (sim/pair_batch.hpp), four at a time where the CPU allows; EPSD keeps the pair loop
+  // below (its rolling spring needs the pair's history and the bodies' inertia).
+  constexpr bool batched = RM != RollingModel::epsd;
+  PairBatchArgs batch;
+  std::vector<BatchPairConstants> batch_constants;
+  PairBatchFn batch_fn = nullptr;
+  if constexpr (batched) {
+    const std::size_t nm = table.material_count();
+    batch_constants.resize(nm * nm);
+    for (std::size_t i = 0; i < nm; ++i)
+      for (std::size_t j = 0; j < nm; ++j) {
+        const PairConstants& pc = table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
+        batch_constants[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction, pc.rolling_friction,
+                                       pc.sqrt_tangential_ratio};
+      }
+    batch.spheres = reinterpret_cast<const double*>(SV);
+    batch.bodies = reinterpret_cast<const double*>(BV);
+    batch.pair_constants = batch_constants.data();
+    batch.materials = nm;
+    batch.si = si.data();
+    batch.sj = sj.data();
+    batch.tangential_m = tang.empty() ? nullptr : tang.data()->data();
+    batch.dt_s = dt;
+    batch.clip_attractive = clip;
+    batch.cdt = RM == RollingModel::cdt;
+    batch.cdt_lever_from_centre_of_mass = lever_com;
+    batch_fn = choose_pair_batch(s.options_.simd);
+  }
+
   std::vector<ThreadStats> tstats(static_cast<std::size_t>(threads));
   for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; compute_forces() turns the
@@ -91,7 +123,85 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       CW->clear();
     }
 
-    // ---- sphere-sphere, one body pair per group -----------------------------------------------
+    // ---- sphere-sphere, batched: chunks of groups; the touching pairs of a chunk are listed
+    // (the others' history cleared) and handed to the batch kernel in list order ---------------
+    if constexpr (batched) {
+      constexpr std::size_t kChunk = 256;  // groups per chunk
+      std::vector<std::uint32_t> touch_k;
+      std::vector<double> touch_scale;
+      std::vector<std::uint8_t> touch_flag;
+      PairBatchArgs args = batch;
+      args.accumulators = reinterpret_cast<double*>(A);
+      PairBatchStats pst;
+      pst.ratio_limit = st.ratio_limit;
+      const std::size_t chunks = (groups + kChunk - 1) / kChunk;
+      const std::uint32_t* __restrict GS = gs.data();
+      const std::uint32_t* __restrict SI = si.data();
+      const std::uint32_t* __restrict SJ = sj.data();
+      double* __restrict TG = batch.tangential_m;
+      int* __restrict GT = sphere_group_touch.data();
+#pragma omp for schedule(static)
+      for (std::size_t c = 0; c < chunks; ++c) {
+        const std::size_t g_begin = c * kChunk, g_end = std::min(groups, (c + 1) * kChunk);
+        const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
+        const std::size_t span = k_end - k_begin;
+        if (touch_k.size() < span) {
+          touch_k.resize(span);
+          touch_scale.resize(span, 1.0);
+          touch_flag.resize(span);
+        }
+        std::uint32_t* __restrict TK = touch_k.data();
+        std::uint8_t* __restrict TF = touch_flag.data();
+        // Which listed pairs touch, branch-free: about a third do not, in no pattern a predictor
+        // could learn. The far sphere of a pair a few pairs ahead is fetched early.
+        std::size_t n = 0;
+        for (std::uint32_t k = k_begin; k < k_end; ++k) {
+          if (k + 16 < k_end) __builtin_prefetch(&SV[SJ[k + 16]]);
+          const SphereView& Si = SV[SI[k]];
+          const SphereView& Sj = SV[SJ[k]];
+          const double rs = Si.radius_m + Sj.radius_m;
+          // The distance exactly as the batch kernel computes it (contact/
+          // hertz_mindlin_lanes.hpp), so every listed pair has a non-negative overlap there.
+          const lanes::V3<double> d{Sj.position_m.x() - Si.position_m.x(),
+                                    Sj.position_m.y() - Si.position_m.y(),
+                                    Sj.position_m.z() - Si.position_m.z()};
+          const bool touch = lanes::dot(d, d) < rs * rs;
+          TK[n] = k;
+          n += touch ? 1 : 0;
+          TF[k - k_begin] = touch ? 1 : 0;
+          // A pair that came apart forgets its spring: its bits are and-ed with zero. The empty
+          // asm hides the mask's origin, so the compiler cannot turn this back into a branch.
+          std::uint64_t keep = touch ? ~std::uint64_t{0} : 0;
+          asm("" : "+r"(keep));
+          std::uint64_t bits[3];
+          std::memcpy(bits, TG + 3 * static_cast<std::size_t>(k), sizeof bits);
+          for (std::uint64_t& b : bits) b &= keep;
+          std::memcpy(TG + 3 * static_cast<std::size_t>(k), bits, sizeof bits);
+        }
+        // Touching pairs per body pair (the HMNR scale and the per-body contact counts).
+        std::size_t listed = 0;
+        for (std::size_t g = g_begin; g < g_end; ++g) {
+          int touching = 0;
+          for (std::uint32_t k = GS[g]; k < GS[g + 1]; ++k) touching += TF[k - k_begin];
+          GT[g] = touching;
+          if constexpr (NM == NormalModel::hmnr) {
+            const double scale = hmnr_damping_scale(touching);
+            for (int i = 0; i < touching; ++i) touch_scale[listed + static_cast<std::size_t>(i)] = scale;
+          }
+          listed += static_cast<std::size_t>(touching);
+        }
+        st.sphere_contacts += n;
+        batch_fn(args, touch_k.data(), touch_scale.data(), n, pst);
+      }
+      st.max_overlap = std::max(st.max_overlap, pst.max_overlap_m);
+      st.max_fn = std::max(st.max_fn, pst.max_fn_n);
+      if (pst.worst_ratio > st.worst_ratio) {
+        st.worst_ratio = pst.worst_ratio;
+        st.worst_body = pst.worst_body;
+        st.worst_radius = pst.worst_radius_m;
+      }
+    } else {
+    // ---- sphere-sphere, one body pair per group (EPSD) -----------------------------------------
 #pragma omp for schedule(static)
     for (std::size_t g = 0; g < groups; ++g) {
       const std::uint32_t a = gs[g], e = gs[g + 1];
@@ -160,6 +270,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       }
       sphere_group_touch[g] = touching;
       st.sphere_contacts += static_cast<std::size_t>(touching);
+    }
     }
 
     // ---- sphere-wall, one (body, wall) pair per group --------------------------------------------

@@ -9,7 +9,10 @@
 // and one per accumulator. The records are refreshed in the integrator's body pass, which already
 // has every field in registers, so they cost one streaming write per body and step. The
 // arithmetic on them is the same as on the arrays: results do not change.
+#include <cstddef>
 #include <cstdint>
+
+#include "solver/sim/pair_batch.hpp"
 
 #include "solver/core/vec.hpp"
 
@@ -43,5 +46,27 @@ struct alignas(64) BodyAccumulator {
 static_assert(sizeof(SphereView) == 64);
 static_assert(sizeof(BodyView) == 128);
 static_assert(sizeof(BodyAccumulator) == 64);
+
+// The batch kernel reads these records through the offsets of sim/pair_batch.hpp.
+namespace view_layout_check {
+namespace L = view_layout;
+static_assert(sizeof(Vec3) == 3 * sizeof(double));
+static_assert(sizeof(SphereView) == L::kSphereStride * sizeof(double));
+static_assert(offsetof(SphereView, position_m) == L::kSpherePosition * sizeof(double));
+static_assert(offsetof(SphereView, radius_m) == L::kSphereRadius * sizeof(double));
+static_assert(offsetof(SphereView, body_position_m) == L::kSphereBodyPosition * sizeof(double));
+static_assert(offsetof(SphereView, body) == L::kSphereBodyByte);
+static_assert(offsetof(SphereView, material) == L::kSphereMaterialByte);
+static_assert(sizeof(BodyView) == L::kBodyStride * sizeof(double));
+static_assert(offsetof(BodyView, velocity_m_s) == L::kBodyVelocity * sizeof(double));
+static_assert(offsetof(BodyView, angular_velocity) == L::kBodyOmega * sizeof(double));
+static_assert(offsetof(BodyView, velocity_end_m_s) == L::kBodyVelocityEnd * sizeof(double));
+static_assert(offsetof(BodyView, angular_velocity_end) == L::kBodyOmegaEnd * sizeof(double));
+static_assert(offsetof(BodyView, inv_mass) == L::kBodyInvMass * sizeof(double));
+static_assert(sizeof(BodyAccumulator) == L::kAccStride * sizeof(double));
+static_assert(offsetof(BodyAccumulator, force_n) == L::kAccForce * sizeof(double));
+static_assert(offsetof(BodyAccumulator, torque_n_m) == L::kAccTorque * sizeof(double));
+static_assert(offsetof(BodyAccumulator, roll_capacity_n_m) == L::kAccRollCapacity * sizeof(double));
+}  // namespace view_layout_check
 
 }  // namespace seedcal

@@ -47,6 +47,9 @@ struct SimulationOptions {
   // neighbours are near in memory (0: never). Worlds under 512 bodies are never sorted.
   std::uint64_t sort_interval_steps = 1000;
   std::uint64_t seed = 0;
+  // Compute sphere-sphere contacts four at a time with AVX2 where the CPU has it (sim/
+  // pair_batch.hpp); the results are the same bits either way.
+  bool simd = true;
   FrameObserver observer;
 };
 

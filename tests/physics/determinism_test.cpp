@@ -6,12 +6,15 @@
 #include <cstdio>
 #include <cstring>
 
+#include "solver/sim/pair_batch.hpp"
 #include "tests/support/random_bed.hpp"
 
 namespace seedcal {
 namespace {
 
-std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps) {
+std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps, bool simd = true,
+                          NormalModel normal = NormalModel::hertz_mindlin,
+                          RollingModel rolling = RollingModel::cdt) {
   testing::MaterialSpec m;
   m.density_kg_m3 = 1340.0;
   m.youngs_modulus_pa = 1.65e8;
@@ -23,7 +26,9 @@ std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps) {
   opt.threads = threads;
   opt.seed = seed;
   opt.dt_s = 2e-6;
-  opt.contact.rolling = RollingModel::cdt;
+  opt.contact.normal = normal;
+  opt.contact.rolling = rolling;
+  opt.simd = simd;
   Simulation sim(testing::make_table(m), opt);
   testing::add_random_bed(sim, testing::BedSpec{}, m.density_kg_m3);
   EXPECT_TRUE(sim.run(static_cast<std::uint64_t>(steps))) << sim.failure().message;
@@ -51,6 +56,26 @@ TEST(Determinism, OneAndTwoThreadsAgree) {
   // 1e-9 m (5e-7 of a radius): summation-order round-off (1e-16 relative) grows through the
   // contacts over 3000 steps but stays many orders below any physical length.
   EXPECT_LT(worst, 1e-9);
+}
+
+// The sphere-sphere kernel on four AVX2 lanes and on one lane gives the same bits
+// (sim/pair_batch.hpp): settling, sliding and resting contacts, with and without HMNR and CDT.
+TEST(Determinism, FourLaneAndOneLaneKernelsAreBitIdentical) {
+  if (!pair_batch_avx2_usable()) GTEST_SKIP() << "this CPU has no AVX2: only the one-lane kernel runs";
+  struct Case {
+    NormalModel normal;
+    RollingModel rolling;
+    int threads;
+  };
+  for (const Case c : {Case{NormalModel::hertz_mindlin, RollingModel::cdt, 1},
+                       Case{NormalModel::hmnr, RollingModel::none, 1},
+                       Case{NormalModel::hertz_mindlin, RollingModel::cdt, 2}}) {
+    const auto a = run_bed(c.threads, 7, 3000, true, c.normal, c.rolling);
+    const auto b = run_bed(c.threads, 7, 3000, false, c.normal, c.rolling);
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)), 0)
+        << to_string(c.normal) << " + " << to_string(c.rolling) << ", " << c.threads << " threads";
+  }
 }
 
 TEST(Determinism, DifferentSeedsDiffer) {

@@ -1,0 +1,130 @@
+#pragma once
+// The body of the batch kernel (sim/pair_batch.hpp) for a lane type `O` (contact/
+// hertz_mindlin_lanes.hpp): O::lanes pairs are loaded into lanes, their forces computed together,
+// and the results added to the bodies one pair at a time in batch order. Included only by
+// pair_batch_scalar.cpp and pair_batch_avx2.cpp, each with its own `O` in an anonymous namespace.
+//
+// Per pair, from the packed views (sim/contact_view.hpp), as in the general kernel
+// (sim/contact_forces.cpp): the normal n = (x_j - x_i) / |x_j - x_i|, the overlap
+// d = r_i + r_j - |x_j - x_i|, the contact point c = x_i + (r_i - d/2) n, the lever arms from
+// each body's centre of mass, the relative velocity of the contact points at the half step and
+// predicted at the step's end, R* = r_i r_j / (r_i + r_j), m* = 1 / (1/m_i + 1/m_j); then
+// Hertz-Mindlin, the torques of the force about each centre of mass and the CDT capacities
+// mu_r |Fn| R (contact/rolling_cdt.hpp).
+#include <cstdint>
+#include <cstring>
+
+#include "solver/contact/hertz_mindlin_lanes.hpp"
+#include "solver/sim/pair_batch.hpp"
+
+namespace seedcal::lanes {
+
+template <class O>
+[[gnu::always_inline]] inline V3<typename O::T> load3(const double* const* p, int offset) {
+  return {O::gather(p, offset), O::gather(p, offset + 1), O::gather(p, offset + 2)};
+}
+
+template <class O>
+void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const double* scale,
+                      std::size_t n, PairBatchStats& stats) {
+  using T = typename O::T;
+  namespace L = view_layout;
+  constexpr int W = O::lanes;
+  for (std::size_t base = 0; base < n; base += W) {
+    const int used = n - base < static_cast<std::size_t>(W) ? static_cast<int>(n - base) : W;
+    // Unused lanes repeat the last pair; their results are dropped.
+    std::uint32_t k[W], bi[W], bj[W];
+    const double *pi[W], *pj[W], *qi[W], *qj[W], *hist[W], *pc[W], *sc[W];
+    for (int l = 0; l < W; ++l) {
+      const std::size_t idx = base + static_cast<std::size_t>(l < used ? l : used - 1);
+      k[l] = pairs[idx];
+      sc[l] = scale + idx;
+      pi[l] = a.spheres + static_cast<std::size_t>(a.si[k[l]]) * L::kSphereStride;
+      pj[l] = a.spheres + static_cast<std::size_t>(a.sj[k[l]]) * L::kSphereStride;
+      std::uint16_t mi, mj;
+      std::memcpy(&bi[l], reinterpret_cast<const char*>(pi[l]) + L::kSphereBodyByte, sizeof bi[l]);
+      std::memcpy(&bj[l], reinterpret_cast<const char*>(pj[l]) + L::kSphereBodyByte, sizeof bj[l]);
+      std::memcpy(&mi, reinterpret_cast<const char*>(pi[l]) + L::kSphereMaterialByte, sizeof mi);
+      std::memcpy(&mj, reinterpret_cast<const char*>(pj[l]) + L::kSphereMaterialByte, sizeof mj);
+      qi[l] = a.bodies + static_cast<std::size_t>(bi[l]) * L::kBodyStride;
+      qj[l] = a.bodies + static_cast<std::size_t>(bj[l]) * L::kBodyStride;
+      hist[l] = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
+      pc[l] = &a.pair_constants[static_cast<std::size_t>(mi) * a.materials + mj].e_star_pa;
+    }
+    static_assert(offsetof(BatchPairConstants, e_star_pa) == 0);
+    const V3<T> xi = load3<O>(pi, L::kSpherePosition), xj = load3<O>(pj, L::kSpherePosition);
+    const T ri = O::gather(pi, L::kSphereRadius), rj = O::gather(pj, L::kSphereRadius);
+    const V3<T> ci = load3<O>(pi, L::kSphereBodyPosition), cj = load3<O>(pj, L::kSphereBodyPosition);
+
+    const V3<T> d = xj - xi;
+    const T rs = ri + rj;
+    const T dist = O::sqrt(dot(d, d));
+    const T zero = O::splat(0.0);
+    const V3<T> normal = select(dist > zero, (1.0 / dist) * d, V3<T>{zero, zero, O::splat(1.0)});
+    const T overlap = rs - dist;
+    const T arm_i = ri - 0.5 * overlap;  // sphere centre to contact point
+    const T arm_j = rj - 0.5 * overlap;
+    const V3<T> cp = xi + arm_i * normal;
+    const V3<T> rci = cp - ci, rcj = cp - cj;
+
+    const V3<T> vi = load3<O>(qi, L::kBodyVelocity), vj = load3<O>(qj, L::kBodyVelocity);
+    const V3<T> wi = load3<O>(qi, L::kBodyOmega), wj = load3<O>(qj, L::kBodyOmega);
+    const V3<T> vrel = (vi + cross(wi, rci)) - (vj + cross(wj, rcj));
+    const V3<T> vei = load3<O>(qi, L::kBodyVelocityEnd), vej = load3<O>(qj, L::kBodyVelocityEnd);
+    const V3<T> wei = load3<O>(qi, L::kBodyOmegaEnd), wej = load3<O>(qj, L::kBodyOmegaEnd);
+    const V3<T> vrel_end = (vei + cross(wei, rci)) - (vej + cross(wej, rcj));
+    const T m_star = 1.0 / (O::gather(qi, L::kBodyInvMass) + O::gather(qj, L::kBodyInvMass));
+    const T r_star = ri * rj / rs;
+
+    const HmConstants<T> hc{O::gather(pc, 0), O::gather(pc, 1), O::gather(pc, 2), O::gather(pc, 4)};
+    V3<T> t = load3<O>(hist, 0);
+    const HmResult<T> f = hertz_mindlin_lanes<O>(hc, normal, overlap, r_star, m_star, vrel, vrel_end,
+                                                 t, a.dt_s, O::gather(sc, 0), a.clip_attractive);
+    const V3<T> ti = cross(rci, f.force_on_i_n), tj = cross(rcj, f.force_on_i_n);
+    T roll_i = zero, roll_j = zero;
+    if (a.cdt) {
+      const T c = O::gather(pc, 3) * O::abs(f.normal_force_n);
+      roll_i = c * (a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rci, rci)) : arm_i);
+      roll_j = c * (a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j);
+    }
+
+    // Back to one pair at a time, in batch order.
+    alignas(64) double out[17][W];
+    const T* rows[17] = {&f.force_on_i_n.x, &f.force_on_i_n.y, &f.force_on_i_n.z, &ti.x, &ti.y, &ti.z,
+                         &tj.x, &tj.y, &tj.z, &t.x, &t.y, &t.z, &roll_i, &roll_j, &overlap,
+                         &f.normal_force_n, &ri};
+    for (int r = 0; r < 17; ++r) O::store(out[r], *rows[r]);
+    alignas(64) double rjs[W];
+    O::store(rjs, rj);
+    for (int l = 0; l < used; ++l) {
+      double* Ai = a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride;
+      double* Aj = a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride;
+      for (int c = 0; c < 3; ++c) {
+        Ai[L::kAccForce + c] += out[c][l];
+        Aj[L::kAccForce + c] -= out[c][l];
+        Ai[L::kAccTorque + c] += out[3 + c][l];
+        Aj[L::kAccTorque + c] -= out[6 + c][l];
+        a.tangential_m[3 * static_cast<std::size_t>(k[l]) + c] = out[9 + c][l];
+      }
+      if (a.cdt) {
+        Ai[L::kAccRollCapacity] += out[12][l];
+        Aj[L::kAccRollCapacity] += out[13][l];
+      }
+      // ThreadStats::note (sim/contact_forces.hpp).
+      const double ov = out[14][l], fn = out[15][l];
+      const double r_min = out[16][l] <= rjs[l] ? out[16][l] : rjs[l];
+      if (ov > stats.max_overlap_m) stats.max_overlap_m = ov;
+      if (fn > stats.max_fn_n) stats.max_fn_n = fn;
+      if (ov > stats.ratio_limit * r_min) {
+        const double ratio = ov / r_min;
+        if (ratio > stats.worst_ratio) {
+          stats.worst_ratio = ratio;
+          stats.worst_body = out[16][l] <= rjs[l] ? bi[l] : bj[l];
+          stats.worst_radius_m = r_min;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace seedcal::lanes
