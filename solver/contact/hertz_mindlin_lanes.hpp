@@ -58,6 +58,27 @@ struct ScalarOps {
     return p[0][offset];
   }
   [[gnu::always_inline]] static void store(double* out, double x) { out[0] = x; }
+  // Fields offset .. offset+3 of each lane's record.
+  [[gnu::always_inline]] static void load4(const double* const* p, int offset, double& a, double& b,
+                                           double& c, double& d) {
+    a = p[0][offset];
+    b = p[0][offset + 1];
+    c = p[0][offset + 2];
+    d = p[0][offset + 3];
+  }
+  // out[lane][0..7] = the eight values of that lane.
+  [[gnu::always_inline]] static void store_lanes8(double (*out)[8], double a0, double a1, double a2,
+                                                  double a3, double a4, double a5, double a6,
+                                                  double a7) {
+    const double v[8] = {a0, a1, a2, a3, a4, a5, a6, a7};
+    for (int i = 0; i < 8; ++i) out[0][i] = v[i];
+  }
+  [[gnu::always_inline]] static void add8(double* acc, const double* v) {
+    for (int i = 0; i < 8; ++i) acc[i] += v[i];
+  }
+  [[gnu::always_inline]] static void sub8(double* acc, const double* v) {
+    for (int i = 0; i < 8; ++i) acc[i] -= v[i];
+  }
 };
 
 // sqrt(5/6), the Hertz-Mindlin damping prefactor.

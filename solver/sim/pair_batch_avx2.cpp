@@ -26,6 +26,43 @@ struct Avx2Ops {
     return _mm256_set_pd(p[3][offset], p[2][offset], p[1][offset], p[0][offset]);
   }
   [[gnu::always_inline]] static void store(double* out, T x) { _mm256_store_pd(out, x); }
+  // 4x4 transpose: rows become columns.
+  [[gnu::always_inline]] static void transpose4(T& a, T& b, T& c, T& d) {
+    const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b);
+    const __m256d t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
+    a = _mm256_permute2f128_pd(t0, t2, 0x20);
+    b = _mm256_permute2f128_pd(t1, t3, 0x20);
+    c = _mm256_permute2f128_pd(t0, t2, 0x31);
+    d = _mm256_permute2f128_pd(t1, t3, 0x31);
+  }
+  // Fields offset .. offset+3 of each lane's record, one vector per field.
+  [[gnu::always_inline]] static void load4(const double* const* p, int offset, T& a, T& b, T& c, T& d) {
+    a = _mm256_loadu_pd(p[0] + offset);
+    b = _mm256_loadu_pd(p[1] + offset);
+    c = _mm256_loadu_pd(p[2] + offset);
+    d = _mm256_loadu_pd(p[3] + offset);
+    transpose4(a, b, c, d);
+  }
+  // out[lane][0..7] = the eight values of that lane.
+  [[gnu::always_inline]] static void store_lanes8(double (*out)[8], T a0, T a1, T a2, T a3, T a4, T a5,
+                                                  T a6, T a7) {
+    transpose4(a0, a1, a2, a3);
+    transpose4(a4, a5, a6, a7);
+    const T lo[4] = {a0, a1, a2, a3}, hi[4] = {a4, a5, a6, a7};
+    for (int l = 0; l < 4; ++l) {
+      _mm256_store_pd(out[l], lo[l]);
+      _mm256_store_pd(out[l] + 4, hi[l]);
+    }
+  }
+  // acc is a 64-byte aligned accumulator record.
+  [[gnu::always_inline]] static void add8(double* acc, const double* v) {
+    _mm256_store_pd(acc, _mm256_load_pd(acc) + _mm256_load_pd(v));
+    _mm256_store_pd(acc + 4, _mm256_load_pd(acc + 4) + _mm256_load_pd(v + 4));
+  }
+  [[gnu::always_inline]] static void sub8(double* acc, const double* v) {
+    _mm256_store_pd(acc, _mm256_load_pd(acc) - _mm256_load_pd(v));
+    _mm256_store_pd(acc + 4, _mm256_load_pd(acc + 4) - _mm256_load_pd(v + 4));
+  }
 };
 
 }  // namespace

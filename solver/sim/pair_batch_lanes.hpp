@@ -52,10 +52,14 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
       pc[l] = &a.pair_constants[static_cast<std::size_t>(mi) * a.materials + mj].e_star_pa;
     }
     static_assert(offsetof(BatchPairConstants, e_star_pa) == 0);
-    const V3<T> xi = load3<O>(pi, L::kSpherePosition), xj = load3<O>(pj, L::kSpherePosition);
-    const T ri = O::gather(pi, L::kSphereRadius), rj = O::gather(pj, L::kSphereRadius);
-    const V3<T> ci = load3<O>(pi, L::kSphereBodyPosition), cj = load3<O>(pj, L::kSphereBodyPosition);
-
+    // Four consecutive fields of each lane's record at once (a transpose where lanes are vectors).
+    V3<T> xi, xj, ci, cj;
+    T ri, rj, unused;
+    O::load4(pi, L::kSpherePosition, xi.x, xi.y, xi.z, ri);
+    O::load4(pj, L::kSpherePosition, xj.x, xj.y, xj.z, rj);
+    O::load4(pi, L::kSphereBodyPosition, ci.x, ci.y, ci.z, unused);
+    O::load4(pj, L::kSphereBodyPosition, cj.x, cj.y, cj.z, unused);
+    static_assert(L::kSphereRadius == L::kSpherePosition + 3);
     const V3<T> d = xj - xi;
     const T rs = ri + rj;
     const T dist = O::sqrt(dot(d, d));
@@ -67,59 +71,60 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     const V3<T> cp = xi + arm_i * normal;
     const V3<T> rci = cp - ci, rcj = cp - cj;
 
-    const V3<T> vi = load3<O>(qi, L::kBodyVelocity), vj = load3<O>(qj, L::kBodyVelocity);
-    const V3<T> wi = load3<O>(qi, L::kBodyOmega), wj = load3<O>(qj, L::kBodyOmega);
+    // The body records hold v, w, v_end, w_end back to back (12 doubles).
+    static_assert(L::kBodyOmega == L::kBodyVelocity + 3 && L::kBodyVelocityEnd == L::kBodyVelocity + 6 &&
+                  L::kBodyOmegaEnd == L::kBodyVelocity + 9);
+    V3<T> vi, wi, vei, wei, vj, wj, vej, wej;
+    O::load4(qi, L::kBodyVelocity, vi.x, vi.y, vi.z, wi.x);
+    O::load4(qi, L::kBodyVelocity + 4, wi.y, wi.z, vei.x, vei.y);
+    O::load4(qi, L::kBodyVelocity + 8, vei.z, wei.x, wei.y, wei.z);
+    O::load4(qj, L::kBodyVelocity, vj.x, vj.y, vj.z, wj.x);
+    O::load4(qj, L::kBodyVelocity + 4, wj.y, wj.z, vej.x, vej.y);
+    O::load4(qj, L::kBodyVelocity + 8, vej.z, wej.x, wej.y, wej.z);
     const V3<T> vrel = (vi + cross(wi, rci)) - (vj + cross(wj, rcj));
-    const V3<T> vei = load3<O>(qi, L::kBodyVelocityEnd), vej = load3<O>(qj, L::kBodyVelocityEnd);
-    const V3<T> wei = load3<O>(qi, L::kBodyOmegaEnd), wej = load3<O>(qj, L::kBodyOmegaEnd);
     const V3<T> vrel_end = (vei + cross(wei, rci)) - (vej + cross(wej, rcj));
     const T m_star = 1.0 / (O::gather(qi, L::kBodyInvMass) + O::gather(qj, L::kBodyInvMass));
     const T r_star = ri * rj / rs;
 
-    const HmConstants<T> hc{O::gather(pc, 0), O::gather(pc, 1), O::gather(pc, 2), O::gather(pc, 4)};
+    T e_star, beta, mu_s, mu_r;
+    O::load4(pc, 0, e_star, beta, mu_s, mu_r);
+    const HmConstants<T> hc{e_star, beta, mu_s, O::gather(pc, 4)};
     V3<T> t = load3<O>(hist, 0);
     const HmResult<T> f = hertz_mindlin_lanes<O>(hc, normal, overlap, r_star, m_star, vrel, vrel_end,
                                                  t, a.dt_s, O::gather(sc, 0), a.clip_attractive);
     const V3<T> ti = cross(rci, f.force_on_i_n), tj = cross(rcj, f.force_on_i_n);
     T roll_i = zero, roll_j = zero;
     if (a.cdt) {
-      const T c = O::gather(pc, 3) * O::abs(f.normal_force_n);
+      const T c = mu_r * O::abs(f.normal_force_n);
       roll_i = c * (a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rci, rci)) : arm_i);
       roll_j = c * (a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j);
     }
 
-    // Back to one pair at a time, in batch order.
-    alignas(64) double out[17][W];
-    const T* rows[17] = {&f.force_on_i_n.x, &f.force_on_i_n.y, &f.force_on_i_n.z, &ti.x, &ti.y, &ti.z,
-                         &tj.x, &tj.y, &tj.z, &t.x, &t.y, &t.z, &roll_i, &roll_j, &overlap,
-                         &f.normal_force_n, &ri};
-    for (int r = 0; r < 17; ++r) O::store(out[r], *rows[r]);
-    alignas(64) double rjs[W];
-    O::store(rjs, rj);
+    // Back to one pair at a time, in batch order: per lane, the eight doubles to add to body i's
+    // accumulator (force, torque, rolling capacity, pad) and the eight to subtract from j's.
+    alignas(64) double add_i[W][8], sub_j[W][8];
+    O::store_lanes8(add_i, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z, ti.x, ti.y, ti.z,
+                    roll_i, zero);
+    O::store_lanes8(sub_j, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z, tj.x, tj.y, tj.z,
+                    -roll_j, zero);
+    static_assert(L::kAccForce == 0 && L::kAccTorque == 3 && L::kAccRollCapacity == 6 && L::kAccStride == 8);
+    alignas(64) double out[7][W];
+    const T* rows[7] = {&t.x, &t.y, &t.z, &overlap, &f.normal_force_n, &ri, &rj};
+    for (int r = 0; r < 7; ++r) O::store(out[r], *rows[r]);
     for (int l = 0; l < used; ++l) {
-      double* Ai = a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride;
-      double* Aj = a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride;
-      for (int c = 0; c < 3; ++c) {
-        Ai[L::kAccForce + c] += out[c][l];
-        Aj[L::kAccForce + c] -= out[c][l];
-        Ai[L::kAccTorque + c] += out[3 + c][l];
-        Aj[L::kAccTorque + c] -= out[6 + c][l];
-        a.tangential_m[3 * static_cast<std::size_t>(k[l]) + c] = out[9 + c][l];
-      }
-      if (a.cdt) {
-        Ai[L::kAccRollCapacity] += out[12][l];
-        Aj[L::kAccRollCapacity] += out[13][l];
-      }
+      O::add8(a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride, add_i[l]);
+      O::sub8(a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride, sub_j[l]);
+      for (int c = 0; c < 3; ++c) a.tangential_m[3 * static_cast<std::size_t>(k[l]) + c] = out[c][l];
       // ThreadStats::note (sim/contact_forces.hpp).
-      const double ov = out[14][l], fn = out[15][l];
-      const double r_min = out[16][l] <= rjs[l] ? out[16][l] : rjs[l];
+      const double ov = out[3][l], fn = out[4][l], r_i = out[5][l], r_j = out[6][l];
+      const double r_min = r_i <= r_j ? r_i : r_j;
       if (ov > stats.max_overlap_m) stats.max_overlap_m = ov;
       if (fn > stats.max_fn_n) stats.max_fn_n = fn;
       if (ov > stats.ratio_limit * r_min) {
         const double ratio = ov / r_min;
         if (ratio > stats.worst_ratio) {
           stats.worst_ratio = ratio;
-          stats.worst_body = out[16][l] <= rjs[l] ? bi[l] : bj[l];
+          stats.worst_body = r_i <= r_j ? bi[l] : bj[l];
           stats.worst_radius_m = r_min;
         }
       }
