@@ -39,7 +39,6 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const SphereView* __restrict SV = s.sphere_view_.data();
   const BodyView* __restrict BV = s.body_view_.data();
   const InteractionTable& table = s.table_;
-  const std::size_t nb = B.size();
   const std::size_t nw = s.walls_.size();
 
   auto& pairs = s.pairs_;
@@ -95,10 +94,6 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; compute_forces() turns the
   // body's total into its rolling torque (contact/rolling_cdt.hpp).
-  BodyAccumulator zero;
-  zero.force_n.setZero();
-  zero.torque_n_m.setZero();
-  zero.roll_capacity_n_m = 0.0;
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
     int t = 0;
@@ -108,7 +103,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
     Vec3* __restrict WF = s.thread_wall_force_[static_cast<std::size_t>(t)].data();
     Vec3* __restrict WT = s.thread_wall_torque_[static_cast<std::size_t>(t)].data();
-    std::fill(A, A + nb, zero);
+    // A starts at zero: the force reduction clears it (Simulation::compute_forces).
     std::fill(WF, WF + nw, Vec3::Zero());
     std::fill(WT, WT + nw, Vec3::Zero());
     double* WK = s.thread_wall_stiffness_[static_cast<std::size_t>(t)].data();
@@ -140,7 +135,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       const std::uint32_t* __restrict SJ = sj.data();
       double* __restrict TG = batch.tangential_m;
       int* __restrict GT = sphere_group_touch.data();
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
       for (std::size_t c = 0; c < chunks; ++c) {
         const std::size_t g_begin = c * kChunk, g_end = std::min(groups, (c + 1) * kChunk);
         const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
@@ -202,7 +197,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       }
     } else {
     // ---- sphere-sphere, one body pair per group (EPSD) -----------------------------------------
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (std::size_t g = 0; g < groups; ++g) {
       const std::uint32_t a = gs[g], e = gs[g + 1];
       double scale = 1.0;
@@ -274,7 +269,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     }
 
     // ---- sphere-wall, one (body, wall) pair per group --------------------------------------------
-#pragma omp for schedule(static)
+#pragma omp for schedule(static) nowait
     for (std::size_t g = 0; g < wgroups; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
       const Wall& wall = s.walls_[ww[a]];

@@ -173,9 +173,15 @@ void Simulation::refresh_views(double h) {
 void Simulation::size_thread_buffers() {
   const auto t = static_cast<std::size_t>(options_.threads);
   const std::size_t nb = bodies_.size(), nw = walls_.size();
+  // The accumulators are zero between steps: the force reduction clears what it reads
+  // (compute_forces), so new ones start at zero too.
+  BodyAccumulator zero;
+  zero.force_n.setZero();
+  zero.torque_n_m.setZero();
+  zero.roll_capacity_n_m = 0.0;
   thread_body_acc_.resize(t);
   for (auto& acc : thread_body_acc_)
-    if (acc.size() < nb) acc.resize(nb);
+    if (acc.size() < nb) acc.resize(nb, zero);
   thread_wall_force_.assign(t, std::vector<Vec3>(nw));
   thread_wall_torque_.assign(t, std::vector<Vec3>(nw));
   thread_wall_stiffness_.assign(t, std::vector<double>(nw));
@@ -254,9 +260,9 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   // half kick of velocity Verlet; the NaN guard rides along (lowest bad body reported).
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
   // Raw pointers, so that the stores do not make the compiler reload the state.
-  std::vector<const BodyAccumulator*> acc_of(nt);
+  std::vector<BodyAccumulator*> acc_of(nt);
   for (std::size_t t = 0; t < nt; ++t) acc_of[t] = thread_body_acc_[t].data();
-  const BodyAccumulator* const* __restrict acc_ptr = acc_of.data();
+  BodyAccumulator* const* __restrict acc_ptr = acc_of.data();
   const double* __restrict mass = bodies_.mass_kg.data();
   const double* __restrict inv_mass = bodies_.inv_mass.data();
   const Quat* __restrict rot = bodies_.orientation.data();
@@ -275,10 +281,15 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
     Vec3 f = mass[b] * g, tq = Vec3::Zero();
     double capacity = 0.0;
     for (std::size_t t = 0; t < nt; ++t) {
-      const BodyAccumulator& acc = acc_ptr[t][b];
+      BodyAccumulator& acc = acc_ptr[t][b];
       f += acc.force_n;
       tq += acc.torque_n_m;
       if (cdt) capacity += acc.roll_capacity_n_m;
+      // Cleared for the next step here, where the line is in cache and the bodies are split
+      // between the threads, instead of by every thread over every body in the kernel.
+      acc.force_n.setZero();
+      acc.torque_n_m.setZero();
+      acc.roll_capacity_n_m = 0.0;
     }
     if (cdt) {
       Vec3 u = Vec3::Zero();
