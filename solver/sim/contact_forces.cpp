@@ -121,7 +121,10 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     // ---- sphere-sphere, batched: chunks of groups; the touching pairs of a chunk are listed
     // (the others' history cleared) and handed to the batch kernel in list order ---------------
     if constexpr (batched) {
-      constexpr std::size_t kChunk = 256;  // groups per chunk
+      // Chunks of about kChunkPairs listed pairs, cut at group boundaries: equal work per chunk
+      // whether a group is one sphere pair (spheres) or dozens (clumps), so the static split
+      // between threads stays balanced and the result does not depend on timing.
+      constexpr std::uint32_t kChunkPairs = 1024;
       std::vector<std::uint32_t> touch_k;
       std::vector<double> touch_scale;
       std::vector<std::uint8_t> touch_flag;
@@ -129,7 +132,13 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       args.accumulators = reinterpret_cast<double*>(A);
       PairBatchStats pst;
       pst.ratio_limit = st.ratio_limit;
-      const std::size_t chunks = (groups + kChunk - 1) / kChunk;
+      const std::uint32_t listed_pairs = groups > 0 ? gs[groups] : 0;
+      const std::size_t chunks = (listed_pairs + kChunkPairs - 1) / kChunkPairs;
+      // First group whose first pair is at or after pair index p.
+      const auto group_at = [&](std::size_t p) {
+        return static_cast<std::size_t>(std::lower_bound(gs.begin(), gs.begin() + static_cast<std::ptrdiff_t>(groups), p) -
+                                        gs.begin());
+      };
       const std::uint32_t* __restrict GS = gs.data();
       const std::uint32_t* __restrict SI = si.data();
       const std::uint32_t* __restrict SJ = sj.data();
@@ -137,7 +146,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       int* __restrict GT = sphere_group_touch.data();
 #pragma omp for schedule(static) nowait
       for (std::size_t c = 0; c < chunks; ++c) {
-        const std::size_t g_begin = c * kChunk, g_end = std::min(groups, (c + 1) * kChunk);
+        const std::size_t g_begin = group_at(c * kChunkPairs);
+        const std::size_t g_end = c + 1 == chunks ? groups : group_at((c + 1) * kChunkPairs);
         const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
         const std::size_t span = k_end - k_begin;
         if (touch_k.size() < span) {

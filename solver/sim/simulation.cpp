@@ -113,9 +113,12 @@ double Simulation::rayleigh_time_step_s() const {
 }
 
 namespace {
-// Sphere i of body b at the body's pose (world centre).
-inline Vec3 sphere_centre(const Vec3& body_position, const Quat& q, const Vec3& offset) {
-  return offset.isZero(0.0) ? body_position : Vec3(body_position + q * offset);
+// Sphere i of body b at the body's pose (world centre): x_b + R(q) offset_i. The rotation matrix
+// is formed once per body (sphere_rotation) and applied to each of its spheres: for a clump that
+// is 15 flops per sphere against about 30 for rotating by the quaternion itself.
+inline Mat3 sphere_rotation(const Quat& q) { return q.toRotationMatrix(); }
+inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const Vec3& offset) {
+  return offset.isZero(0.0) ? body_position : Vec3(body_position + rotation * offset);
 }
 
 // The contact kernel's record of a body (sim/contact_view.hpp): half-step velocities and, for the
@@ -145,8 +148,8 @@ void Simulation::update_sphere_positions() {
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t b = spheres_.body[i];
-    spheres_.position_m[i] =
-        sphere_centre(bodies_.position_m[b], bodies_.orientation[b], spheres_.offset_body_m[i]);
+    spheres_.position_m[i] = sphere_centre(bodies_.position_m[b], sphere_rotation(bodies_.orientation[b]),
+                                           spheres_.offset_body_m[i]);
   }
 }
 
@@ -429,8 +432,15 @@ bool Simulation::first_half_step(double dt) {
     fill_body_view(bview[b], v, w,
                    angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso),
                    force[b], inv_mass[b], h);
+    // The rotation matrix only when some sphere is off the centre of mass (not for a lone sphere).
+    Mat3 rotation;
+    bool rotated = false;
     for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
-      const Vec3 c = sphere_centre(p, q, offset[i]);
+      if (!rotated && !offset[i].isZero(0.0)) {
+        rotation = sphere_rotation(q);
+        rotated = true;
+      }
+      const Vec3 c = rotated ? sphere_centre(p, rotation, offset[i]) : p;
       centre[i] = c;
       fill_sphere_view(sview[i], c, radius[i], p, b, material[i]);
       if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
