@@ -19,6 +19,46 @@
 
 namespace seedcal {
 
+namespace {
+
+// The batch kernel's first pass over listed pairs [k_begin, k_end): writes the touching ones to
+// `touching` (in list order; returns how many), a 0/1 flag per pair to `flag`, and clears the
+// tangential spring (3 doubles per pair in `spring`) of every pair that does not touch.
+// Branch-free: about a third of the listed pairs do not touch, in no pattern a predictor could
+// learn. The far sphere of a pair a few pairs ahead is fetched early.
+std::size_t list_touching_pairs(const SphereView* __restrict SV, const std::uint32_t* __restrict SI,
+                                const std::uint32_t* __restrict SJ, std::uint32_t k_begin,
+                                std::uint32_t k_end, std::uint32_t* __restrict touching,
+                                std::uint8_t* __restrict flag, double* __restrict spring) {
+  std::size_t n = 0;
+  for (std::uint32_t k = k_begin; k < k_end; ++k) {
+    if (k + 16 < k_end) __builtin_prefetch(&SV[SJ[k + 16]]);
+    const SphereView& Si = SV[SI[k]];
+    const SphereView& Sj = SV[SJ[k]];
+    const double rs = Si.radius_m + Sj.radius_m;
+    // The distance exactly as the batch kernel computes it (contact/hertz_mindlin_lanes.hpp), so
+    // every listed pair has a non-negative overlap there.
+    const lanes::V3<double> d{Sj.position_m.x() - Si.position_m.x(),
+                              Sj.position_m.y() - Si.position_m.y(),
+                              Sj.position_m.z() - Si.position_m.z()};
+    const bool touch = lanes::dot(d, d) < rs * rs;
+    touching[n] = k;
+    n += touch ? 1 : 0;
+    flag[k - k_begin] = touch ? 1 : 0;
+    // A pair that came apart forgets its spring: its bits are and-ed with zero. The empty asm
+    // hides the mask's origin, so the compiler cannot turn this back into a branch.
+    std::uint64_t keep = touch ? ~std::uint64_t{0} : 0;
+    asm("" : "+r"(keep));
+    std::uint64_t bits[3];
+    std::memcpy(bits, spring + 3 * static_cast<std::size_t>(k), sizeof bits);
+    for (std::uint64_t& b : bits) b &= keep;
+    std::memcpy(spring + 3 * static_cast<std::size_t>(k), bits, sizeof bits);
+  }
+  return n;
+}
+
+}  // namespace
+
 struct ForceKernel {
   template <NormalModel NM, RollingModel RM>
   static void run(Simulation& s, std::vector<int>& sphere_group_touch,
@@ -60,9 +100,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const std::size_t wgroups = wl.group_count();
   wall_group_touch.assign(wgroups, 0);
 
-  // Hertz-Mindlin with no rolling friction or CDT: touching sphere pairs go through the batch
-  // kernel (sim/pair_batch.hpp), four at a time where the CPU allows; EPSD keeps the pair loop
-  // below (its rolling spring needs the pair's history and the bodies' inertia).
+  // Hertz-Mindlin or HMNR, with no rolling friction or with CDT: touching sphere pairs go through
+  // the batch kernel (sim/pair_batch.hpp), four at a time where the CPU allows; EPSD keeps the
+  // pair loop below (its rolling spring needs the pair's history and the bodies' inertia).
   constexpr bool batched = RM != RollingModel::epsd;
   PairBatchArgs batch;
   std::vector<BatchPairConstants> batch_constants;
@@ -72,9 +112,10 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     batch_constants.resize(nm * nm);
     for (std::size_t i = 0; i < nm; ++i)
       for (std::size_t j = 0; j < nm; ++j) {
-        const PairConstants& pc = table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
-        batch_constants[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction, pc.rolling_friction,
-                                       pc.sqrt_tangential_ratio};
+        const PairConstants& pc =
+            table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
+        batch_constants[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction,
+                                       pc.rolling_friction, pc.sqrt_tangential_ratio};
       }
     batch.spheres = reinterpret_cast<const double*>(SV);
     batch.bodies = reinterpret_cast<const double*>(BV);
@@ -136,8 +177,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       const std::size_t chunks = (listed_pairs + kChunkPairs - 1) / kChunkPairs;
       // First group whose first pair is at or after pair index p.
       const auto group_at = [&](std::size_t p) {
-        return static_cast<std::size_t>(std::lower_bound(gs.begin(), gs.begin() + static_cast<std::ptrdiff_t>(groups), p) -
-                                        gs.begin());
+        const auto end = gs.begin() + static_cast<std::ptrdiff_t>(groups);
+        return static_cast<std::size_t>(std::lower_bound(gs.begin(), end, p) - gs.begin());
       };
       const std::uint32_t* __restrict GS = gs.data();
       const std::uint32_t* __restrict SI = si.data();
@@ -157,32 +198,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         }
         std::uint32_t* __restrict TK = touch_k.data();
         std::uint8_t* __restrict TF = touch_flag.data();
-        // Which listed pairs touch, branch-free: about a third do not, in no pattern a predictor
-        // could learn. The far sphere of a pair a few pairs ahead is fetched early.
-        std::size_t n = 0;
-        for (std::uint32_t k = k_begin; k < k_end; ++k) {
-          if (k + 16 < k_end) __builtin_prefetch(&SV[SJ[k + 16]]);
-          const SphereView& Si = SV[SI[k]];
-          const SphereView& Sj = SV[SJ[k]];
-          const double rs = Si.radius_m + Sj.radius_m;
-          // The distance exactly as the batch kernel computes it (contact/
-          // hertz_mindlin_lanes.hpp), so every listed pair has a non-negative overlap there.
-          const lanes::V3<double> d{Sj.position_m.x() - Si.position_m.x(),
-                                    Sj.position_m.y() - Si.position_m.y(),
-                                    Sj.position_m.z() - Si.position_m.z()};
-          const bool touch = lanes::dot(d, d) < rs * rs;
-          TK[n] = k;
-          n += touch ? 1 : 0;
-          TF[k - k_begin] = touch ? 1 : 0;
-          // A pair that came apart forgets its spring: its bits are and-ed with zero. The empty
-          // asm hides the mask's origin, so the compiler cannot turn this back into a branch.
-          std::uint64_t keep = touch ? ~std::uint64_t{0} : 0;
-          asm("" : "+r"(keep));
-          std::uint64_t bits[3];
-          std::memcpy(bits, TG + 3 * static_cast<std::size_t>(k), sizeof bits);
-          for (std::uint64_t& b : bits) b &= keep;
-          std::memcpy(TG + 3 * static_cast<std::size_t>(k), bits, sizeof bits);
-        }
+        const std::size_t n = list_touching_pairs(SV, SI, SJ, k_begin, k_end, TK, TF, TG);
         // Touching pairs per body pair (the HMNR scale and the per-body contact counts).
         std::size_t listed = 0;
         for (std::size_t g = g_begin; g < g_end; ++g) {
@@ -191,7 +207,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           GT[g] = touching;
           if constexpr (NM == NormalModel::hmnr) {
             const double scale = hmnr_damping_scale(touching);
-            for (int i = 0; i < touching; ++i) touch_scale[listed + static_cast<std::size_t>(i)] = scale;
+            for (int i = 0; i < touching; ++i)
+              touch_scale[listed + static_cast<std::size_t>(i)] = scale;
           }
           listed += static_cast<std::size_t>(touching);
         }

@@ -36,7 +36,8 @@ struct Avx2Ops {
     d = _mm256_permute2f128_pd(t1, t3, 0x31);
   }
   // Fields offset .. offset+3 of each lane's record, one vector per field.
-  [[gnu::always_inline]] static void load4(const double* const* p, int offset, T& a, T& b, T& c, T& d) {
+  [[gnu::always_inline]] static void load4(const double* const* p, int offset, T& a, T& b, T& c,
+                                           T& d) {
     a = _mm256_loadu_pd(p[0] + offset);
     b = _mm256_loadu_pd(p[1] + offset);
     c = _mm256_loadu_pd(p[2] + offset);
@@ -44,8 +45,8 @@ struct Avx2Ops {
     transpose4(a, b, c, d);
   }
   // out[lane][0..7] = the eight values of that lane.
-  [[gnu::always_inline]] static void store_lanes8(double (*out)[8], T a0, T a1, T a2, T a3, T a4, T a5,
-                                                  T a6, T a7) {
+  [[gnu::always_inline]] static void store_lanes8(double (*out)[8], T a0, T a1, T a2, T a3, T a4,
+                                                  T a5, T a6, T a7) {
     transpose4(a0, a1, a2, a3);
     transpose4(a4, a5, a6, a7);
     const T lo[4] = {a0, a1, a2, a3}, hi[4] = {a4, a5, a6, a7};

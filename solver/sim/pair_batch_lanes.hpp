@@ -72,7 +72,8 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     const V3<T> rci = cp - ci, rcj = cp - cj;
 
     // The body records hold v, w, v_end, w_end back to back (12 doubles).
-    static_assert(L::kBodyOmega == L::kBodyVelocity + 3 && L::kBodyVelocityEnd == L::kBodyVelocity + 6 &&
+    static_assert(L::kBodyOmega == L::kBodyVelocity + 3 &&
+                  L::kBodyVelocityEnd == L::kBodyVelocity + 6 &&
                   L::kBodyOmegaEnd == L::kBodyVelocity + 9);
     V3<T> vi, wi, vei, wei, vj, wj, vej, wej;
     O::load4(qi, L::kBodyVelocity, vi.x, vi.y, vi.z, wi.x);
@@ -90,8 +91,9 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     O::load4(pc, 0, e_star, beta, mu_s, mu_r);
     const HmConstants<T> hc{e_star, beta, mu_s, O::gather(pc, 4)};
     V3<T> t = load3<O>(hist, 0);
-    const HmResult<T> f = hertz_mindlin_lanes<O>(hc, normal, overlap, r_star, m_star, vrel, vrel_end,
-                                                 t, a.dt_s, O::gather(sc, 0), a.clip_attractive);
+    const HmResult<T> f = hertz_mindlin_lanes<O>(hc, normal, overlap, r_star, m_star, vrel,
+                                                 vrel_end, t, a.dt_s, O::gather(sc, 0),
+                                                 a.clip_attractive);
     const V3<T> ti = cross(rci, f.force_on_i_n), tj = cross(rcj, f.force_on_i_n);
     T roll_i = zero, roll_j = zero;
     if (a.cdt) {
@@ -107,14 +109,16 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
                     roll_i, zero);
     O::store_lanes8(sub_j, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z, tj.x, tj.y, tj.z,
                     -roll_j, zero);
-    static_assert(L::kAccForce == 0 && L::kAccTorque == 3 && L::kAccRollCapacity == 6 && L::kAccStride == 8);
+    static_assert(L::kAccForce == 0 && L::kAccTorque == 3 && L::kAccRollCapacity == 6 &&
+                  L::kAccStride == 8);
     alignas(64) double out[7][W];
     const T* rows[7] = {&t.x, &t.y, &t.z, &overlap, &f.normal_force_n, &ri, &rj};
     for (int r = 0; r < 7; ++r) O::store(out[r], *rows[r]);
     for (int l = 0; l < used; ++l) {
       O::add8(a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride, add_i[l]);
       O::sub8(a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride, sub_j[l]);
-      for (int c = 0; c < 3; ++c) a.tangential_m[3 * static_cast<std::size_t>(k[l]) + c] = out[c][l];
+      double* spring = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
+      for (int c = 0; c < 3; ++c) spring[c] = out[c][l];
       // ThreadStats::note (sim/contact_forces.hpp).
       const double ov = out[3][l], fn = out[4][l], r_i = out[5][l], r_j = out[6][l];
       const double r_min = r_i <= r_j ? r_i : r_j;

@@ -148,8 +148,8 @@ void Simulation::update_sphere_positions() {
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint32_t b = spheres_.body[i];
-    spheres_.position_m[i] = sphere_centre(bodies_.position_m[b], sphere_rotation(bodies_.orientation[b]),
-                                           spheres_.offset_body_m[i]);
+    spheres_.position_m[i] = sphere_centre(
+        bodies_.position_m[b], sphere_rotation(bodies_.orientation[b]), spheres_.offset_body_m[i]);
   }
 }
 
