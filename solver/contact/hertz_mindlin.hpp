@@ -62,8 +62,6 @@ struct ContactForce {
   double normal_stiffness_n_m;  // Sn, for the EPSD rolling spring
 };
 
-using lanes::kSqrtFiveSixths;
-
 // One contact, in Eigen types; the formulas are those of contact/hertz_mindlin_lanes.hpp, which
 // the sphere-sphere kernel runs on several contacts at once.
 [[gnu::always_inline]] inline ContactForce hertz_mindlin(const PairConstants& c,

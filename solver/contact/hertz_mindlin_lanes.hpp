@@ -4,7 +4,7 @@
 // the choice of velocities are documented in contact/hertz_mindlin.hpp, whose scalar
 // hertz_mindlin() calls this code; the sphere-sphere kernel calls it with four lanes.
 //
-// Lane types. `O` supplies the lane type O::T and sqrt, any-of-mask and min; the arithmetic,
+// Lane types. `O` supplies the lane type O::T and sqrt, abs, splat and any-of-mask; the arithmetic,
 // comparisons and `mask ? a : b` are the language's own (GCC and Clang give vector types the same
 // operators as double). Every lane is computed with the same operations in the same order, and no
 // operation is fused (the lane translation units are built without FMA contraction), so one

@@ -1,9 +1,9 @@
 #pragma once
 // The sphere-sphere force kernel for a batch of touching pairs (Hertz-Mindlin with or without
-// HMNR, no rolling friction or CDT): the same code on one lane (pair_batch_scalar.cpp, any x86-64)
+// HMNR, with no rolling friction or with CDT): the same code on one lane (pair_batch_scalar.cpp, any x86-64)
 // or four (pair_batch_avx2.cpp, AVX2), chosen once per run. Both give the same bits: the lanes run
 // the same operations in the same order without fused multiply-adds, and the results are added to
-// the bodies in the order of the batch (tested in tests/physics/pair_batch_test.cpp).
+// the bodies in the order of the batch (tested in tests/physics/determinism_test.cpp).
 //
 // This header holds only plain types: the AVX2 translation unit must not include Eigen or other
 // library headers whose inline functions it would compile for AVX2 (sim/contact_view.hpp checks
