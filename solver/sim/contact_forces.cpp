@@ -12,6 +12,7 @@
 #include "solver/sim/contact_forces.hpp"
 #include "solver/sim/pair_batch.hpp"
 #include "solver/sim/simulation.hpp"
+#include "solver/sim/work_split.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -131,6 +132,13 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     batch_fn = choose_pair_batch(s.options_.simd);
   }
 
+  // Each thread takes the sphere pairs and then the wall pairs of one range of bodies, the ranges
+  // cut where the work is equal (sim/work_split.hpp). One thread takes everything in list order.
+  const std::uint32_t* body_of_sphere = s.spheres_.body.data();
+  const std::vector<WorkShare> shares = split_contact_work(
+      {gs, groups, [&](std::size_t g) { return body_of_sphere[si[gs[g]]]; }},
+      {wgs, wgroups, [&](std::size_t g) { return body_of_sphere[ws[wgs[g]]]; }},
+      B.size(), static_cast<std::size_t>(threads));
   std::vector<ThreadStats> tstats(static_cast<std::size_t>(threads));
   for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; compute_forces() turns the
@@ -141,30 +149,35 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
 #ifdef _OPENMP
     t = omp_get_thread_num();
 #endif
-    BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
-    Vec3* __restrict WF = s.thread_wall_force_[static_cast<std::size_t>(t)].data();
-    Vec3* __restrict WT = s.thread_wall_torque_[static_cast<std::size_t>(t)].data();
+    // Normally one share per thread; should the team be smaller, its threads take the rest in turn.
+    std::size_t team = 1;
+#ifdef _OPENMP
+    team = static_cast<std::size_t>(omp_get_num_threads());
+#endif
     // A starts at zero: the force reduction clears it (Simulation::compute_forces).
-    std::fill(WF, WF + nw, Vec3::Zero());
-    std::fill(WT, WT + nw, Vec3::Zero());
-    double* WK = s.thread_wall_stiffness_[static_cast<std::size_t>(t)].data();
-    int* WC = s.thread_wall_contacts_[static_cast<std::size_t>(t)].data();
-    std::fill(WK, WK + nw, 0.0);
-    std::fill(WC, WC + nw, 0);
+    BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
+    WallAccumulator* __restrict WA = s.thread_wall_acc_[static_cast<std::size_t>(t)].data();
+    for (std::size_t w = 0; w < nw; ++w) {
+      WA[w].force_n.setZero();
+      WA[w].torque_n_m.setZero();
+      WA[w].contact_stiffness_n_m = 0.0;
+      WA[w].contacts = 0;
+    }
     // A private copy: the per-contact updates must not share a cache line between threads.
     ThreadStats st = tstats[static_cast<std::size_t>(t)];
-    std::vector<Simulation::CdtWallShare>* CW = nullptr;
+    // Filled here and handed over at the end: the vectors' own records sit side by side in
+    // thread_cdt_wall_, and a push_back into them would write to a line the other threads use.
+    std::vector<Simulation::CdtWallShare> cdt_wall;
     if constexpr (RM == RollingModel::cdt) {
-      CW = &s.thread_cdt_wall_[static_cast<std::size_t>(t)];
-      CW->clear();
+      cdt_wall.swap(s.thread_cdt_wall_[static_cast<std::size_t>(t)]);
+      cdt_wall.clear();
     }
 
     // ---- sphere-sphere, batched: chunks of groups; the touching pairs of a chunk are listed
     // (the others' history cleared) and handed to the batch kernel in list order ---------------
     if constexpr (batched) {
-      // Chunks of about kChunkPairs listed pairs, cut at group boundaries: equal work per chunk
-      // whether a group is one sphere pair (spheres) or dozens (clumps), so the static split
-      // between threads stays balanced and the result does not depend on timing.
+      // The thread's share is taken in chunks of about kChunkPairs listed pairs, cut at group
+      // boundaries, small enough that a chunk's lists stay in the first-level cache.
       constexpr std::uint32_t kChunkPairs = 1024;
       std::vector<std::uint32_t> touch_k;
       std::vector<double> touch_scale;
@@ -173,22 +186,16 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       args.accumulators = reinterpret_cast<double*>(A);
       PairBatchStats pst;
       pst.ratio_limit = st.ratio_limit;
-      const std::uint32_t listed_pairs = groups > 0 ? gs[groups] : 0;
-      const std::size_t chunks = (listed_pairs + kChunkPairs - 1) / kChunkPairs;
-      // First group whose first pair is at or after pair index p.
-      const auto group_at = [&](std::size_t p) {
-        const auto end = gs.begin() + static_cast<std::ptrdiff_t>(groups);
-        return static_cast<std::size_t>(std::lower_bound(gs.begin(), end, p) - gs.begin());
-      };
       const std::uint32_t* __restrict GS = gs.data();
       const std::uint32_t* __restrict SI = si.data();
       const std::uint32_t* __restrict SJ = sj.data();
       double* __restrict TG = batch.tangential_m;
       int* __restrict GT = sphere_group_touch.data();
-#pragma omp for schedule(static) nowait
-      for (std::size_t c = 0; c < chunks; ++c) {
-        const std::size_t g_begin = group_at(c * kChunkPairs);
-        const std::size_t g_end = c + 1 == chunks ? groups : group_at((c + 1) * kChunkPairs);
+      for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size(); sh += team)
+      for (std::size_t g_begin = shares[sh].sphere_begin; g_begin < shares[sh].sphere_end;) {
+        // The next chunk: whole groups up to about kChunkPairs pairs (at least one group).
+        std::size_t g_end = group_at_or_after(gs, groups, GS[g_begin] + kChunkPairs);
+        g_end = std::min(std::max(g_end, g_begin + 1), shares[sh].sphere_end);
         const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
         const std::size_t span = k_end - k_begin;
         if (touch_k.size() < span) {
@@ -214,6 +221,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         }
         st.sphere_contacts += n;
         batch_fn(args, touch_k.data(), touch_scale.data(), n, pst);
+        g_begin = g_end;
       }
       st.max_overlap = std::max(st.max_overlap, pst.max_overlap_m);
       st.max_fn = std::max(st.max_fn, pst.max_fn_n);
@@ -224,8 +232,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       }
     } else {
     // ---- sphere-sphere, one body pair per group (EPSD) -----------------------------------------
-#pragma omp for schedule(static) nowait
-    for (std::size_t g = 0; g < groups; ++g) {
+    for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size(); sh += team)
+    for (std::size_t g = shares[sh].sphere_begin; g < shares[sh].sphere_end; ++g) {
       const std::uint32_t a = gs[g], e = gs[g + 1];
       double scale = 1.0;
       if constexpr (NM == NormalModel::hmnr) {
@@ -296,8 +304,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     }
 
     // ---- sphere-wall, one (body, wall) pair per group --------------------------------------------
-#pragma omp for schedule(static) nowait
-    for (std::size_t g = 0; g < wgroups; ++g) {
+    for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size(); sh += team)
+    for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
       const Wall& wall = s.walls_[ww[a]];
       const WallShape& shape = *wall.shape;
@@ -341,16 +349,17 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         BodyAccumulator& Ab = A[b];
         Ab.force_n += cf.force_on_i_n;
         Ab.torque_n_m += rc.cross(cf.force_on_i_n);
-        WF[ww[a]] -= cf.force_on_i_n;
-        WK[ww[a]] += cf.normal_stiffness_n_m;
-        ++WC[ww[a]];
-        WT[ww[a]] -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
+        WallAccumulator& Aw = WA[ww[a]];
+        Aw.force_n -= cf.force_on_i_n;
+        Aw.contact_stiffness_n_m += cf.normal_stiffness_n_m;
+        ++Aw.contacts;
+        Aw.torque_n_m -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
         if constexpr (RM == RollingModel::cdt) {
           // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
           // plate feels it as a torque about its origin).
           const double c = pc.rolling_friction * std::abs(cf.normal_force_n) * (lever_com ? rc.norm() : hit.distance);
           Ab.roll_capacity_n_m += c;
-          CW->push_back({ww[a], b, c});
+          cdt_wall.push_back({ww[a], b, c});
         } else if constexpr (RM == RollingModel::epsd) {
           const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
           const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s,
@@ -358,13 +367,15 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
                              cf.normal_force_n, cf.normal_stiffness_n_m, r, ib, eta_r, dt};
           const Vec3 tau = epsd_torque(in, wroll[k]);
           Ab.torque_n_m += tau;
-          WT[ww[a]] -= tau;
+          Aw.torque_n_m -= tau;
         }
         st.note(overlap, cf.normal_force_n, r, b);
       }
       wall_group_touch[g] = touching;
       st.wall_contacts += static_cast<std::size_t>(touching);
     }
+    if constexpr (RM == RollingModel::cdt)
+      cdt_wall.swap(s.thread_cdt_wall_[static_cast<std::size_t>(t)]);
     tstats[static_cast<std::size_t>(t)] = st;
   }
 

@@ -43,7 +43,17 @@ struct alignas(64) BodyAccumulator {
   double roll_capacity_n_m;  // CDT: sum mu_r |Fn| R_i over the body's contacts
 };
 
+// One wall's share of the contact forces, accumulated by one thread (64 bytes, so that two
+// threads never write to one cache line).
+struct alignas(64) WallAccumulator {
+  Vec3 force_n;                       // on the wall
+  Vec3 torque_n_m;                    // about the wall frame's origin
+  double contact_stiffness_n_m = 0.0; // summed normal stiffness of its contacts
+  int contacts = 0;
+};
+
 static_assert(sizeof(SphereView) == 64);
+static_assert(sizeof(WallAccumulator) == 64);
 static_assert(sizeof(BodyView) == 128);
 static_assert(sizeof(BodyAccumulator) == 64);
 

@@ -185,10 +185,7 @@ void Simulation::size_thread_buffers() {
   thread_body_acc_.resize(t);
   for (auto& acc : thread_body_acc_)
     if (acc.size() < nb) acc.resize(nb, zero);
-  thread_wall_force_.assign(t, std::vector<Vec3>(nw));
-  thread_wall_torque_.assign(t, std::vector<Vec3>(nw));
-  thread_wall_stiffness_.assign(t, std::vector<double>(nw));
-  thread_wall_contacts_.assign(t, std::vector<int>(nw));
+  thread_wall_acc_.assign(t, std::vector<WallAccumulator>(nw));
   thread_cdt_wall_.resize(t);
 }
 
@@ -317,10 +314,11 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
     double k = 0.0;
     int c = 0;
     for (std::size_t t = 0; t < nt; ++t) {
-      f += thread_wall_force_[t][w];
-      tq += thread_wall_torque_[t][w];
-      k += thread_wall_stiffness_[t][w];
-      c += thread_wall_contacts_[t][w];
+      const WallAccumulator& acc = thread_wall_acc_[t][w];
+      f += acc.force_n;
+      tq += acc.torque_n_m;
+      k += acc.contact_stiffness_n_m;
+      c += acc.contacts;
     }
     walls_[w].force_n = f;
     walls_[w].torque_n_m = tq;

@@ -177,9 +177,7 @@ class Simulation {
   // Per-thread force, torque and rolling-capacity accumulators (at least one per body), reduced
   // in thread order (deterministic for a given thread count).
   std::vector<std::vector<BodyAccumulator>> thread_body_acc_;
-  std::vector<std::vector<Vec3>> thread_wall_force_, thread_wall_torque_;
-  std::vector<std::vector<double>> thread_wall_stiffness_;
-  std::vector<std::vector<int>> thread_wall_contacts_;
+  std::vector<std::vector<WallAccumulator>> thread_wall_acc_;
   std::vector<WallPose> wall_pose_at_build_;
   std::vector<std::uint32_t> index_of_id_;
   GuardFailure failure_;
