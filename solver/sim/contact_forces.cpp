@@ -89,7 +89,11 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   auto& tang = pairs.tangential();
   auto& roll = pairs.rolling();
   const std::size_t groups = pairs.group_count();
-  sphere_group_touch.assign(groups, 0);
+  // Touching pairs per body pair: HMNR's damping scale, and the per-body contact counts when they
+  // are tracked; otherwise not counted (a pass over every group of the list).
+  const bool count_groups = NM == NormalModel::hmnr || s.options_.track_body_contacts;
+  if (count_groups) sphere_group_touch.assign(groups, 0);
+  else sphere_group_touch.clear();
 
   auto& wl = s.wall_pairs_;
   const auto& wgs = wl.group_start();
@@ -206,9 +210,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         std::uint32_t* __restrict TK = touch_k.data();
         std::uint8_t* __restrict TF = touch_flag.data();
         const std::size_t n = list_touching_pairs(SV, SI, SJ, k_begin, k_end, TK, TF, TG);
-        // Touching pairs per body pair (the HMNR scale and the per-body contact counts).
         std::size_t listed = 0;
-        for (std::size_t g = g_begin; g < g_end; ++g) {
+        for (std::size_t g = g_begin; count_groups && g < g_end; ++g) {
           int touching = 0;
           for (std::uint32_t k = GS[g]; k < GS[g + 1]; ++k) touching += TF[k - k_begin];
           GT[g] = touching;
@@ -298,7 +301,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         }
         st.note(overlap, cf.normal_force_n, std::min(ri, rj), ri <= rj ? bi : bj);
       }
-      sphere_group_touch[g] = touching;
+      if (count_groups) sphere_group_touch[g] = touching;
       st.sphere_contacts += static_cast<std::size_t>(touching);
     }
     }
