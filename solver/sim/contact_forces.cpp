@@ -112,8 +112,10 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   PairBatchArgs batch;
   std::vector<BatchPairConstants> batch_constants;
   PairBatchFn batch_fn = nullptr;
+  const std::size_t nm = table.material_count();
+  WallBatchArgs wall_args;
+  WallBatchFn wall_fn = nullptr;
   if constexpr (batched) {
-    const std::size_t nm = table.material_count();
     batch_constants.resize(nm * nm);
     for (std::size_t i = 0; i < nm; ++i)
       for (std::size_t j = 0; j < nm; ++j) {
@@ -134,6 +136,13 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     batch.cdt = RM == RollingModel::cdt;
     batch.cdt_lever_from_centre_of_mass = lever_com;
     batch_fn = choose_pair_batch(s.options_.simd);
+    wall_args.bodies = batch.bodies;
+    wall_args.pair_constants = batch.pair_constants;
+    wall_args.tangential_m = wtang.empty() ? nullptr : wtang.data()->data();
+    wall_args.dt_s = dt;
+    wall_args.clip_attractive = clip;
+    wall_args.cdt = batch.cdt;
+    wall_fn = choose_wall_batch(s.options_.simd);
   }
 
   // Each thread takes the sphere pairs and then the wall pairs of one range of bodies, the ranges
@@ -307,6 +316,95 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     }
 
     // ---- sphere-wall, one (body, wall) pair per group --------------------------------------------
+    if constexpr (batched) {
+      // The touching pairs are gathered (shape queries, one at a time), their forces computed by
+      // the wall batch kernel, four at a time where the CPU allows, and added to the bodies and
+      // walls in list order.
+      constexpr std::size_t kWallBatch = 256;
+      struct WallSide {
+        std::uint32_t wall;
+        Vec3 arm_m;  // contact point minus the wall frame's origin (the wall's torque)
+      };
+      std::vector<WallContactIn> win;
+      std::vector<WallContactOut> wout;
+      std::vector<WallSide> side;
+      const auto flush = [&] {
+        wout.resize(win.size());
+        wall_fn(wall_args, win.data(), win.size(), wout.data());
+        for (std::size_t i = 0; i < win.size(); ++i) {
+          const WallContactIn& c = win[i];
+          const WallContactOut& o = wout[i];
+          const Vec3 f(o.force_on_sphere_n[0], o.force_on_sphere_n[1], o.force_on_sphere_n[2]);
+          BodyAccumulator& Ab = A[c.body];
+          Ab.force_n += f;
+          Ab.torque_n_m += Vec3(o.torque_n_m[0], o.torque_n_m[1], o.torque_n_m[2]);
+          WallAccumulator& Aw = WA[side[i].wall];
+          Aw.force_n -= f;
+          Aw.contact_stiffness_n_m += o.normal_stiffness_n_m;
+          ++Aw.contacts;
+          Aw.torque_n_m -= side[i].arm_m.cross(f);
+          if constexpr (RM == RollingModel::cdt) {
+            // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
+            // plate feels it as a torque about its origin).
+            Ab.roll_capacity_n_m += o.roll_capacity_n_m;
+            cdt_wall.push_back({side[i].wall, c.body, o.roll_capacity_n_m});
+          }
+          st.note(c.overlap_m, o.normal_force_n, c.radius_m, c.body);
+        }
+        win.clear();
+        side.clear();
+      };
+      for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size(); sh += team)
+      for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
+        const std::uint32_t a = wgs[g], e = wgs[g + 1];
+        const Wall& wall = s.walls_[ww[a]];
+        const WallShape& shape = *wall.shape;
+        int touching = 0;
+        for (std::uint32_t k = a; k < e; ++k) {
+          const SphereView& Si = SV[ws[k]];
+          const double r = Si.radius_m;
+          WallHit hit;
+          if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, Si.position_m), r,
+                             hit) || hit.distance >= r) {
+            wtang[k].setZero();
+            continue;
+          }
+          ++touching;
+          const Vec3 normal = wall.pose.orientation * hit.normal;
+          const Vec3 arm = wall.pose.orientation * hit.point;
+          const Vec3 cp = wall.pose.origin_m + arm;
+          const Vec3 rc = cp - Si.body_position_m;
+          const Vec3 v_wall = wall.velocity_at(cp);
+          WallContactIn c;
+          for (int i = 0; i < 3; ++i) {
+            c.normal[i] = normal[i];
+            c.lever_m[i] = rc[i];
+            c.wall_velocity_m_s[i] = v_wall[i];
+          }
+          c.overlap_m = r - hit.distance;
+          c.radius_m = r;
+          c.mass_kg = B.mass_kg[Si.body];
+          c.rolling_lever_m = lever_com ? rc.norm() : hit.distance;
+          c.damping_scale = 1.0;
+          c.body = Si.body;
+          c.constants = static_cast<std::uint32_t>(Si.material * nm + wall.material);
+          c.pair = k;
+          win.push_back(c);
+          side.push_back({ww[a], Vec3(cp - wall.pose.origin_m)});
+        }
+        if constexpr (NM == NormalModel::hmnr) {
+          // The group's touching pairs share the body and the wall: one scale for all of them.
+          const double scale = hmnr_damping_scale(touching);
+          for (std::size_t i = win.size() - static_cast<std::size_t>(touching); i < win.size(); ++i)
+            win[i].damping_scale = scale;
+        }
+        wall_group_touch[g] = touching;
+        st.wall_contacts += static_cast<std::size_t>(touching);
+        if (win.size() >= kWallBatch) flush();
+      }
+      flush();
+    } else {
+    // ---- sphere-wall, one (body, wall) pair per group, EPSD -------------------------------------
     for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size(); sh += team)
     for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
@@ -332,7 +430,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, Si.position_m), r,
                            hit) || hit.distance >= r) {
           wtang[k].setZero();
-          if constexpr (RM == RollingModel::epsd) wroll[k].setZero();
+          wroll[k].setZero();
           continue;
         }
         ++touching;
@@ -357,25 +455,19 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         Aw.contact_stiffness_n_m += cf.normal_stiffness_n_m;
         ++Aw.contacts;
         Aw.torque_n_m -= (cp - wall.pose.origin_m).cross(cf.force_on_i_n);
-        if constexpr (RM == RollingModel::cdt) {
-          // The wall takes the reaction of the rolling-resistance couple (a drum or a rotating
-          // plate feels it as a torque about its origin).
-          const double c = pc.rolling_friction * std::abs(cf.normal_force_n) * (lever_com ? rc.norm() : hit.distance);
-          Ab.roll_capacity_n_m += c;
-          cdt_wall.push_back({ww[a], b, c});
-        } else if constexpr (RM == RollingModel::epsd) {
-          const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
-          const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s,
-                             Bb.angular_velocity_end - wall.pose.angular_velocity_rad_s, pc.rolling_friction,
-                             cf.normal_force_n, cf.normal_stiffness_n_m, r, ib, eta_r, dt};
-          const Vec3 tau = epsd_torque(in, wroll[k]);
-          Ab.torque_n_m += tau;
-          Aw.torque_n_m -= tau;
-        }
+        const double ib = B.principal_inertia[b].mean() + B.mass_kg[b] * rc.squaredNorm();
+        const EpsdInput in{normal, w - wall.pose.angular_velocity_rad_s,
+                           Bb.angular_velocity_end - wall.pose.angular_velocity_rad_s,
+                           pc.rolling_friction, cf.normal_force_n, cf.normal_stiffness_n_m, r, ib,
+                           eta_r, dt};
+        const Vec3 tau = epsd_torque(in, wroll[k]);
+        Ab.torque_n_m += tau;
+        Aw.torque_n_m -= tau;
         st.note(overlap, cf.normal_force_n, r, b);
       }
       wall_group_touch[g] = touching;
       st.wall_contacts += static_cast<std::size_t>(touching);
+    }
     }
     if constexpr (RM == RollingModel::cdt)
       cdt_wall.swap(s.thread_cdt_wall_[static_cast<std::size_t>(t)]);

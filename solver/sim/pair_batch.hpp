@@ -1,5 +1,5 @@
 #pragma once
-// The sphere-sphere force kernel for a batch of touching pairs (Hertz-Mindlin with or without
+// The sphere-sphere force kernel for a batch of touching pairs, and its sphere-wall twin, (Hertz-Mindlin with or without
 // HMNR, with no rolling friction or with CDT): the same code on one lane (pair_batch_scalar.cpp, any x86-64)
 // or four (pair_batch_avx2.cpp, AVX2), chosen once per run. Both give the same bits: the lanes run
 // the same operations in the same order without fused multiply-adds, and the results are added to
@@ -53,6 +53,50 @@ struct PairBatchStats {
   double worst_ratio = 0.0, worst_radius_m = 0.0;
   std::int64_t worst_body = -1;
 };
+
+// One touching sphere-wall contact, as the contact kernel's wall pass hands it to the wall batch
+// kernel: 16 doubles, so each lane's record loads four fields at a time.
+struct alignas(64) WallContactIn {
+  double normal[3];              // unit, from the sphere centre towards the wall (world)
+  double overlap_m;
+  double lever_m[3];             // contact point minus the body's centre of mass
+  double radius_m;               // R*: the sphere's radius (the wall's is infinite)
+  double wall_velocity_m_s[3];   // the wall's material velocity at the contact point
+  double mass_kg;                // m*: the body's mass (the wall's is infinite)
+  double rolling_lever_m;        // CDT: the lever R_i of the capacity mu_r |Fn| R_i
+  double damping_scale;          // 1, or HMNR's 1/sqrt(touching pairs of the body and wall)
+  std::uint32_t body;            // BodyView record
+  std::uint32_t constants;       // index of the material pair in pair_constants
+  std::uint64_t pair;            // index in the wall contact list: its tangential spring
+};
+
+// What the wall batch kernel returns for one contact.
+struct WallContactOut {
+  double force_on_sphere_n[3];  // the wall receives the opposite
+  double torque_n_m[3];         // of that force about the body's centre of mass
+  double roll_capacity_n_m;     // CDT capacity mu_r |Fn| R_i (0 without CDT)
+  double normal_force_n;        // signed, positive = repulsive
+  double normal_stiffness_n_m;  // Sn
+};
+
+struct WallBatchArgs {
+  const double* bodies = nullptr;                      // BodyView records
+  const BatchPairConstants* pair_constants = nullptr;
+  double* tangential_m = nullptr;                      // the wall contact list's springs
+  double dt_s = 0.0;
+  bool clip_attractive = false;
+  bool cdt = false;
+};
+
+// Hertz-Mindlin (and the CDT capacity) of the touching sphere-wall contacts in[0..n), springs
+// updated in place; results in out[0..n). The caller adds them to bodies and walls in order.
+using WallBatchFn = void (*)(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
+                             WallContactOut* out);
+void wall_batch_scalar(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
+                       WallContactOut* out);
+void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
+                     WallContactOut* out);
+WallBatchFn choose_wall_batch(bool allow_simd);
 
 // Forces of the touching pairs pairs[0..n) of the neighbour list (every one must touch), with
 // damping scale scale[i] (1, or HMNR's 1/sqrt(contacts)); added to the accumulators in that order.

@@ -73,6 +73,11 @@ void pair_batch_avx2(const PairBatchArgs& args, const std::uint32_t* pairs, cons
   lanes::pair_batch_lanes<Avx2Ops>(args, pairs, scale, n, stats);
 }
 
+void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
+                     WallContactOut* out) {
+  lanes::wall_batch_lanes<Avx2Ops>(args, in, n, out);
+}
+
 }  // namespace seedcal
 #else
 namespace seedcal {
@@ -80,6 +85,10 @@ namespace seedcal {
 void pair_batch_avx2(const PairBatchArgs& args, const std::uint32_t* pairs, const double* scale,
                      std::size_t n, PairBatchStats& stats) {
   pair_batch_scalar(args, pairs, scale, n, stats);
+}
+void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
+                     WallContactOut* out) {
+  wall_batch_scalar(args, in, n, out);
 }
 }  // namespace seedcal
 #endif

@@ -136,4 +136,71 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
   }
 }
 
+// The wall batch kernel (sim/pair_batch.hpp): the same Hertz-Mindlin as above, with the wall as
+// the second body (R* = r, m* = m, the wall's velocity at the contact point subtracted).
+template <class O>
+void wall_batch_lanes(const WallBatchArgs& a, const WallContactIn* in, std::size_t n,
+                      WallContactOut* out) {
+  using T = typename O::T;
+  namespace L = view_layout;
+  constexpr int W = O::lanes;
+  static_assert(sizeof(WallContactIn) == 16 * sizeof(double));
+  for (std::size_t base = 0; base < n; base += W) {
+    const int used = n - base < static_cast<std::size_t>(W) ? static_cast<int>(n - base) : W;
+    // Unused lanes repeat the last contact; their results are dropped.
+    const double *rec[W], *q[W], *pc[W], *hist[W];
+    for (int l = 0; l < W; ++l) {
+      const WallContactIn& c = in[base + static_cast<std::size_t>(l < used ? l : used - 1)];
+      rec[l] = c.normal;
+      q[l] = a.bodies + static_cast<std::size_t>(c.body) * L::kBodyStride;
+      pc[l] = &a.pair_constants[c.constants].e_star_pa;
+      hist[l] = a.tangential_m + 3 * c.pair;
+    }
+    static_assert(offsetof(WallContactIn, overlap_m) == 3 * sizeof(double) &&
+                  offsetof(WallContactIn, lever_m) == 4 * sizeof(double) &&
+                  offsetof(WallContactIn, radius_m) == 7 * sizeof(double) &&
+                  offsetof(WallContactIn, wall_velocity_m_s) == 8 * sizeof(double) &&
+                  offsetof(WallContactIn, mass_kg) == 11 * sizeof(double) &&
+                  offsetof(WallContactIn, rolling_lever_m) == 12 * sizeof(double) &&
+                  offsetof(WallContactIn, damping_scale) == 13 * sizeof(double));
+    V3<T> n_, rc, vw;
+    T overlap, radius, mass;
+    O::load4(rec, 0, n_.x, n_.y, n_.z, overlap);
+    O::load4(rec, 4, rc.x, rc.y, rc.z, radius);
+    O::load4(rec, 8, vw.x, vw.y, vw.z, mass);
+    V3<T> v, w, ve, we;
+    O::load4(q, L::kBodyVelocity, v.x, v.y, v.z, w.x);
+    O::load4(q, L::kBodyVelocity + 4, w.y, w.z, ve.x, ve.y);
+    O::load4(q, L::kBodyVelocity + 8, ve.z, we.x, we.y, we.z);
+    const V3<T> vrel = (v + cross(w, rc)) - vw;
+    const V3<T> vrel_end = (ve + cross(we, rc)) - vw;
+    T e_star, beta, mu_s, mu_r;
+    O::load4(pc, 0, e_star, beta, mu_s, mu_r);
+    const HmConstants<T> hc{e_star, beta, mu_s, O::gather(pc, 4)};
+    V3<T> t = load3<O>(hist, 0);
+    const HmResult<T> f = hertz_mindlin_lanes<O>(hc, n_, overlap, radius, mass, vrel, vrel_end, t,
+                                                 a.dt_s, O::gather(rec, 13), a.clip_attractive);
+    const V3<T> tq = cross(rc, f.force_on_i_n);
+    const T roll = a.cdt ? mu_r * O::abs(f.normal_force_n) * O::gather(rec, 12) : O::splat(0.0);
+    alignas(64) double row[12][W];
+    const T* rows[12] = {&t.x, &t.y, &t.z, &f.force_on_i_n.x, &f.force_on_i_n.y,
+                         &f.force_on_i_n.z, &tq.x, &tq.y, &tq.z, &roll, &f.normal_force_n,
+                         &f.normal_stiffness_n_m};
+    for (int r = 0; r < 12; ++r) O::store(row[r], *rows[r]);
+    for (int l = 0; l < used; ++l) {
+      const std::size_t i = base + static_cast<std::size_t>(l);
+      double* spring = a.tangential_m + 3 * in[i].pair;
+      WallContactOut& o = out[i];
+      for (int c = 0; c < 3; ++c) {
+        spring[c] = row[c][l];
+        o.force_on_sphere_n[c] = row[3 + c][l];
+        o.torque_n_m[c] = row[6 + c][l];
+      }
+      o.roll_capacity_n_m = row[9][l];
+      o.normal_force_n = row[10][l];
+      o.normal_stiffness_n_m = row[11][l];
+    }
+  }
+}
+
 }  // namespace seedcal::lanes
