@@ -50,6 +50,7 @@ Simulation::Simulation(InteractionTable table, SimulationOptions options)
 std::uint32_t Simulation::add_body(const BodyDef& def) {
   if (def.spheres.empty()) throw std::invalid_argument("add_body: a body needs at least one sphere");
   if (!(def.mass_kg > 0.0)) throw std::invalid_argument("add_body: mass must be > 0");
+  settle();
   const auto b = static_cast<std::uint32_t>(bodies_.size());
   bodies_.position_m.push_back(def.position_m);
   bodies_.orientation.push_back(def.orientation.normalized());
@@ -94,6 +95,7 @@ void Simulation::set_time_step(double dt_s) {
 }
 
 void Simulation::set_body_motion(std::uint32_t b, const Vec3& v, const Vec3& w) {
+  settle();
   bodies_.velocity_m_s[b] = v;
   bodies_.angular_velocity[b] = w;
   bodies_.angular_momentum[b] =
@@ -191,6 +193,7 @@ void Simulation::size_thread_buffers() {
 
 void Simulation::ensure_ready() {
   if (ready_) return;
+  settle();
   double r_max = 0.0;
   for (double r : spheres_.radius_m) r_max = std::max(r_max, r);
   skin_m_ = options_.skin_m > 0.0 ? options_.skin_m : 0.2 * r_max;
@@ -256,22 +259,16 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   // time (the first call).
   const double h = mid_step ? dt : 0.5 * dt;
   if (cdt) cdt_torque_per_capacity_.resize(nb);
-  // Sum the threads' shares in thread order, settle the CDT torque, and (mid-step) apply the second
-  // half kick of velocity Verlet; the NaN guard rides along (lowest bad body reported).
+  // Sum the threads' shares in thread order and settle the CDT torque; the NaN guard rides along
+  // (lowest bad body reported). Mid-step, the second half kick is left pending (finish_kick()).
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
   // Raw pointers, so that the stores do not make the compiler reload the state.
   std::vector<BodyAccumulator*> acc_of(nt);
   for (std::size_t t = 0; t < nt; ++t) acc_of[t] = thread_body_acc_[t].data();
   BodyAccumulator* const* __restrict acc_ptr = acc_of.data();
   const double* __restrict mass = bodies_.mass_kg.data();
-  const double* __restrict inv_mass = bodies_.inv_mass.data();
-  const Quat* __restrict rot = bodies_.orientation.data();
-  const Vec3* __restrict inv_inertia = bodies_.inv_inertia.data();
-  const std::uint8_t* __restrict iso = bodies_.isotropic.data();
-  const Vec3* __restrict pos = bodies_.position_m.data();
-  Vec3* __restrict vel = bodies_.velocity_m_s.data();
-  Vec3* __restrict mom = bodies_.angular_momentum.data();
-  Vec3* __restrict omega = bodies_.angular_velocity.data();
+  const Vec3* __restrict mom = bodies_.angular_momentum.data();
+  const Vec3* __restrict omega = bodies_.angular_velocity.data();
   Vec3* __restrict force = bodies_.force_n.data();
   Vec3* __restrict torque = bodies_.torque_n_m.data();
   Vec3* __restrict cdt_u = cdt ? cdt_torque_per_capacity_.data() : nullptr;
@@ -300,14 +297,12 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
     }
     force[b] = f;
     torque[b] = tq;
-    if (!mid_step) continue;
-    const Vec3 v = vel[b] + (0.5 * dt * inv_mass[b]) * f;
-    const Vec3 L = mom[b] + (0.5 * dt) * tq;
-    vel[b] = v;
-    mom[b] = L;
-    omega[b] = angular_velocity_from_momentum(rot[b], inv_inertia[b], L, iso[b] != 0);
-    const double probe = pos[b].sum() + v.sum() + L.sum();
-    if (!std::isfinite(probe)) first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+    if (!std::isfinite(f.sum() + tq.sum()))
+      first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+  }
+  if (mid_step) {
+    kick_pending_ = true;
+    kick_dt_s_ = dt;
   }
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     Vec3 f = Vec3::Zero(), tq = Vec3::Zero();
@@ -381,8 +376,27 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   return first_bad == std::numeric_limits<std::int64_t>::max() ? -1 : first_bad;
 }
 
-bool Simulation::first_half_step(double dt) {
+void Simulation::finish_kick() {
+  if (!kick_pending_) return;
+  const std::size_t nb = bodies_.size();
+  const double hk = 0.5 * kick_dt_s_;
+#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
+  for (std::size_t b = 0; b < nb; ++b) {
+    const Vec3 L = bodies_.angular_momentum[b] + hk * bodies_.torque_n_m[b];
+    bodies_.velocity_m_s[b] += (hk * bodies_.inv_mass[b]) * bodies_.force_n[b];
+    bodies_.angular_momentum[b] = L;
+    bodies_.angular_velocity[b] = angular_velocity_from_momentum(
+        bodies_.orientation[b], bodies_.inv_inertia[b], L, bodies_.isotropic[b] != 0);
+  }
+  kick_pending_ = false;
+}
+
+bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
   const std::size_t nb = bodies_.size(), ns = spheres_.size();
+  // The previous step's second half kick, when pending, with that step's dt (finish_kick()).
+  const bool kick = kick_pending_;
+  const double hk = 0.5 * kick_dt_s_;
+  kick_pending_ = false;
   body_view_.resize(nb);
   sphere_view_.resize(ns);
   // Dashpot velocities: v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and L~_{n+1} = L_{n+1/2} + dt/2 T_n
@@ -411,13 +425,21 @@ bool Simulation::first_half_step(double dt) {
   BodyView* __restrict bview = body_view_.data();
   SphereView* __restrict sview = sphere_view_.data();
   double max_moved_sq = 0.0;
+  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
-    reduction(max : max_moved_sq)
+    reduction(max : max_moved_sq) reduction(min : bad)
   for (std::size_t b = 0; b < nb; ++b) {
-    // Velocity Verlet, first half: kick with the forces of the previous step, then drift.
-    const Vec3 v = vel[b] + (h * inv_mass[b]) * force[b];
-    const Vec3 L = mom[b] + h * torque[b];
+    // The last step's second half kick (same operations as finish_kick()), then velocity Verlet's
+    // first half: kick with the same forces, then drift.
+    Vec3 v_full = vel[b], L_full = mom[b];
+    if (kick) {
+      v_full = v_full + (hk * inv_mass[b]) * force[b];
+      L_full = L_full + hk * torque[b];
+    }
+    const Vec3 v = v_full + (h * inv_mass[b]) * force[b];
+    const Vec3 L = L_full + h * torque[b];
     const Vec3 p = pos[b] + dt * v;
+    if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
     const bool iso = iso_flag[b] != 0;
     Quat q = rot[b];
     free_rotation_step(q, L, inv_inertia[b], iso, dt);
@@ -444,6 +466,7 @@ bool Simulation::first_half_step(double dt) {
       if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
     }
   }
+  first_bad = bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;
   return ref == nullptr || max_moved_sq > pairs_.rebuild_distance_sq();
 }
 
@@ -454,7 +477,8 @@ bool Simulation::step() {
   const double dt = options_.dt_s;
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  bool rebuild = first_half_step(dt);
+  std::int64_t moved_bad = -1;
+  bool rebuild = first_half_step(dt, moved_bad);
   for (Wall& w : walls_)
     if (w.motion) w.motion->advance(w, time_s_, dt);
   time_s_ += dt;
@@ -469,8 +493,9 @@ bool Simulation::step() {
   }
   if (rebuild || walls_moved_beyond_skin()) rebuild_lists();
   lap(prof, t0, profile_.neighbour_s);
-  // Forces at t_{n+1}, then the second half kick (inside compute_forces).
-  const std::int64_t first_bad = compute_forces(true);
+  // Forces at t_{n+1}; their second half kick is left pending (finish_kick()).
+  std::int64_t first_bad = compute_forces(true);
+  if (moved_bad >= 0 && (first_bad < 0 || moved_bad < first_bad)) first_bad = moved_bad;
   if (first_bad >= 0 && failure_.status == RunStatus::ok) {
     const std::string step_note = step_size_note();
     fail(RunStatus::non_finite, first_bad,
@@ -490,6 +515,7 @@ bool Simulation::run(std::uint64_t n) {
 }
 
 double Simulation::kinetic_energy_j() const {
+  settle();
   double e = 0.0;
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     e += 0.5 * bodies_.mass_kg[b] * bodies_.velocity_m_s[b].squaredNorm() +

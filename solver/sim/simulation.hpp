@@ -92,8 +92,15 @@ class Simulation {
   bool final_check();
 
   std::uint32_t index_of(std::uint32_t id) const { return index_of_id_[id]; }
-  const BodyState& bodies() const { return bodies_; }
-  BodyState& bodies() { return bodies_; }
+  // The bodies at the end of the last step (see finish_kick()).
+  const BodyState& bodies() const {
+    settle();
+    return bodies_;
+  }
+  BodyState& bodies() {
+    settle();
+    return bodies_;
+  }
   const SphereState& spheres() const { return spheres_; }
   const std::vector<Wall>& walls() const { return walls_; }
   std::vector<Wall>& walls() { return walls_; }
@@ -128,11 +135,24 @@ class Simulation {
   // The first half of a velocity Verlet step for every body (kick, drift, rotation), fused with
   // placing its spheres and refreshing the contact views. Returns true when some sphere moved
   // more than half the skin since the neighbour list was built.
-  bool first_half_step(double dt);
+  // Also applies a pending second half kick of the previous step first (finish_kick()), and sets
+  // `first_bad` to the lowest body whose new state is not finite (or -1).
+  bool first_half_step(double dt, std::int64_t& first_bad);
+  // The second half kick of velocity Verlet, v += dt/2 F / m and L += dt/2 T with the forces just
+  // computed, is left pending at the end of step(): the next step's first half kick follows it in
+  // the same pass over the bodies, which then reads and writes each body's state once instead of
+  // twice. Anything that reads or changes the bodies between steps (the bodies() accessors, the
+  // energies, set_body_motion, remove_bodies, adding bodies) applies it first, with the angular
+  // velocity it implies; the arithmetic is the same either way, so results are the same bits.
+  void finish_kick();
+  void settle() const {
+    // Only the pending kick changes: a Simulation is never itself a const object.
+    if (kick_pending_) const_cast<Simulation*>(this)->finish_kick();
+  }
   // `mid_step`: the bodies hold half-step velocities (inside step()), so the dashpots get the
-  // predicted end-of-step velocities, and the second half kick follows the force reduction in the
-  // same pass; false when the velocities are already at the force time (then nothing is kicked).
-  // Returns the lowest body whose state is not finite after the kick, or -1.
+  // predicted end-of-step velocities, and the second half kick is left pending (finish_kick());
+  // false when the velocities are already at the force time (then nothing is kicked).
+  // Returns the lowest body whose force or torque is not finite, or -1.
   std::int64_t compute_forces(bool mid_step);
   // Rebuilds the contact views from the state (sim/contact_view.hpp), with dashpot velocities
   // predicted over h (0: the velocities are at the force time).
@@ -193,6 +213,8 @@ class Simulation {
   double reference_energy_j_ = -1.0;  // < 0: recompute
   double reference_potential_j_ = 0.0;
   bool ready_ = false;
+  bool kick_pending_ = false;  // finish_kick() not yet applied
+  double kick_dt_s_ = 0.0;     // the step it belongs to
   bool forces_valid_ = false;
 };
 

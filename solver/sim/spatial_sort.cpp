@@ -108,6 +108,7 @@ void Simulation::reorder_bodies(const std::vector<std::uint32_t>& old_of_new) {
 }
 
 void Simulation::remove_bodies(const std::function<bool(std::uint32_t index)>& remove) {
+  settle();
   std::vector<std::uint32_t> keep;
   for (std::uint32_t b = 0; b < bodies_.size(); ++b)
     if (!remove(b)) keep.push_back(b);
