@@ -30,6 +30,9 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
   using T = typename O::T;
   namespace L = view_layout;
   constexpr int W = O::lanes;
+  // Largest overlap and normal force over the batch, lane by lane (an unused lane repeats a pair,
+  // which does not change a maximum); folded into `stats` at the end.
+  T max_overlap = O::splat(stats.max_overlap_m), max_fn = O::splat(stats.max_fn_n);
   for (std::size_t base = 0; base < n; base += W) {
     const int used = n - base < static_cast<std::size_t>(W) ? static_cast<int>(n - base) : W;
     // Unused lanes repeat the last pair; their results are dropped.
@@ -111,28 +114,43 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
                     -roll_j, zero);
     static_assert(L::kAccForce == 0 && L::kAccTorque == 3 && L::kAccRollCapacity == 6 &&
                   L::kAccStride == 8);
-    alignas(64) double out[7][W];
-    const T* rows[7] = {&t.x, &t.y, &t.z, &overlap, &f.normal_force_n, &ri, &rj};
-    for (int r = 0; r < 7; ++r) O::store(out[r], *rows[r]);
+    alignas(64) double out[3][W];
+    const T* rows[3] = {&t.x, &t.y, &t.z};
+    for (int r = 0; r < 3; ++r) O::store(out[r], *rows[r]);
     for (int l = 0; l < used; ++l) {
       O::add8(a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride, add_i[l]);
       O::sub8(a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride, sub_j[l]);
       double* spring = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
       for (int c = 0; c < 3; ++c) spring[c] = out[c][l];
-      // ThreadStats::note (sim/contact_forces.hpp).
-      const double ov = out[3][l], fn = out[4][l], r_i = out[5][l], r_j = out[6][l];
-      const double r_min = r_i <= r_j ? r_i : r_j;
-      if (ov > stats.max_overlap_m) stats.max_overlap_m = ov;
-      if (fn > stats.max_fn_n) stats.max_fn_n = fn;
-      if (ov > stats.ratio_limit * r_min) {
-        const double ratio = ov / r_min;
+    }
+    // ThreadStats::note (sim/contact_forces.hpp): the maxima in lanes, a deep overlap (rare) one
+    // pair at a time.
+    max_overlap = overlap > max_overlap ? overlap : max_overlap;
+    max_fn = f.normal_force_n > max_fn ? f.normal_force_n : max_fn;
+    const T r_min = ri <= rj ? ri : rj;
+    if (O::any(overlap > stats.ratio_limit * r_min)) {
+      alignas(64) double ov[W], r_i[W], r_j[W];
+      O::store(ov, overlap);
+      O::store(r_i, ri);
+      O::store(r_j, rj);
+      for (int l = 0; l < used; ++l) {
+        const double rm = r_i[l] <= r_j[l] ? r_i[l] : r_j[l];
+        if (!(ov[l] > stats.ratio_limit * rm)) continue;
+        const double ratio = ov[l] / rm;
         if (ratio > stats.worst_ratio) {
           stats.worst_ratio = ratio;
-          stats.worst_body = r_i <= r_j ? bi[l] : bj[l];
-          stats.worst_radius_m = r_min;
+          stats.worst_body = r_i[l] <= r_j[l] ? bi[l] : bj[l];
+          stats.worst_radius_m = rm;
         }
       }
     }
+  }
+  alignas(64) double lane_overlap[W], lane_fn[W];
+  O::store(lane_overlap, max_overlap);
+  O::store(lane_fn, max_fn);
+  for (int l = 0; l < W; ++l) {
+    if (lane_overlap[l] > stats.max_overlap_m) stats.max_overlap_m = lane_overlap[l];
+    if (lane_fn[l] > stats.max_fn_n) stats.max_fn_n = lane_fn[l];
   }
 }
 
