@@ -58,6 +58,14 @@ std::size_t list_touching_pairs(const SphereView* __restrict SV, const std::uint
   return n;
 }
 
+// Whether sphere `sv` touches primitive `primitive` of `wall`; fills `hit` (wall frame) when so.
+inline bool touches_wall(const Wall& wall, const SphereView& sv, std::uint32_t primitive,
+                         WallHit& hit) {
+  return wall.shape->nearest(static_cast<int>(primitive), to_wall_frame(wall.pose, sv.position_m),
+                             sv.radius_m, hit) &&
+         hit.distance < sv.radius_m;
+}
+
 }  // namespace
 
 struct ForceKernel {
@@ -358,14 +366,12 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
         const std::uint32_t a = wgs[g], e = wgs[g + 1];
         const Wall& wall = s.walls_[ww[a]];
-        const WallShape& shape = *wall.shape;
         int touching = 0;
         for (std::uint32_t k = a; k < e; ++k) {
           const SphereView& Si = SV[ws[k]];
           const double r = Si.radius_m;
           WallHit hit;
-          if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, Si.position_m), r,
-                             hit) || hit.distance >= r) {
+          if (!touches_wall(wall, Si, wp[k], hit)) {
             wtang[k].setZero();
             continue;
           }
@@ -409,17 +415,11 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
       const Wall& wall = s.walls_[ww[a]];
-      const WallShape& shape = *wall.shape;
       double scale = 1.0;
       if constexpr (NM == NormalModel::hmnr) {
         int n = 0;
         WallHit hit;
-        for (std::uint32_t k = a; k < e; ++k) {
-          const double r = SV[ws[k]].radius_m;
-          if (shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, SV[ws[k]].position_m),
-                            r, hit) && hit.distance < r)
-            ++n;
-        }
+        for (std::uint32_t k = a; k < e; ++k) n += touches_wall(wall, SV[ws[k]], wp[k], hit) ? 1 : 0;
         scale = hmnr_damping_scale(n);
       }
       int touching = 0;
@@ -427,8 +427,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const SphereView& Si = SV[ws[k]];
         const double r = Si.radius_m;
         WallHit hit;
-        if (!shape.nearest(static_cast<int>(wp[k]), to_wall_frame(wall.pose, Si.position_m), r,
-                           hit) || hit.distance >= r) {
+        if (!touches_wall(wall, Si, wp[k], hit)) {
           wtang[k].setZero();
           wroll[k].setZero();
           continue;
