@@ -177,6 +177,8 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
 #endif
     // A starts at zero: the force reduction clears it (Simulation::compute_forces).
     BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
+    // Every write to A marks its body here (the reduction reads only marked accumulators).
+    std::uint8_t* __restrict touched = s.thread_body_touched_[static_cast<std::size_t>(t)].data();
     WallAccumulator* __restrict WA = s.thread_wall_acc_[static_cast<std::size_t>(t)].data();
     for (std::size_t w = 0; w < nw; ++w) {
       WA[w].force_n.setZero();
@@ -200,11 +202,14 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       // The thread's share is taken in chunks of about kChunkPairs listed pairs, cut at group
       // boundaries, small enough that a chunk's lists stay in the first-level cache.
       constexpr std::uint32_t kChunkPairs = 1024;
-      std::vector<std::uint32_t> touch_k;
-      std::vector<double> touch_scale;
-      std::vector<std::uint8_t> touch_flag;
+      KernelScratch& sc = s.thread_scratch_[static_cast<std::size_t>(t)];
+      std::vector<std::uint32_t>& touch_k = sc.touch_k;
+      std::vector<std::uint8_t>& touch_flag = sc.touch_flag;
+      // Hertz-Mindlin reads a scale of one for every pair from a buffer nothing writes to.
+      std::vector<double>& touch_scale = NM == NormalModel::hmnr ? sc.touch_scale : sc.ones;
       PairBatchArgs args = batch;
       args.accumulators = reinterpret_cast<double*>(A);
+      args.touched = touched;
       PairBatchStats pst;
       pst.ratio_limit = st.ratio_limit;
       const std::uint32_t* __restrict GS = gs.data();
@@ -219,11 +224,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         g_end = std::min(std::max(g_end, g_begin + 1), shares[sh].sphere_end);
         const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
         const std::size_t span = k_end - k_begin;
-        if (touch_k.size() < span) {
-          touch_k.resize(span);
-          touch_scale.resize(span, 1.0);
-          touch_flag.resize(span);
-        }
+        if (touch_k.size() < span) touch_k.resize(span);
+        if (touch_flag.size() < span) touch_flag.resize(span);
+        if (touch_scale.size() < span) touch_scale.resize(span, 1.0);
         std::uint32_t* __restrict TK = touch_k.data();
         std::uint8_t* __restrict TF = touch_flag.data();
         const std::size_t n = list_touching_pairs(SV, SI, SJ, k_begin, k_end, TK, TF, TG);
@@ -298,6 +301,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const ContactForce cf = hertz_mindlin(pc, kin, tang[k], dt, scale, clip);
         BodyAccumulator& Ai = A[bi];
         BodyAccumulator& Aj = A[bj];
+        touched[bi] = touched[bj] = 1;
         Ai.force_n += cf.force_on_i_n;
         Aj.force_n -= cf.force_on_i_n;
         Ai.torque_n_m += rci.cross(cf.force_on_i_n);
@@ -329,13 +333,12 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       // the wall batch kernel, four at a time where the CPU allows, and added to the bodies and
       // walls in list order.
       constexpr std::size_t kWallBatch = 256;
-      struct WallSide {
-        std::uint32_t wall;
-        Vec3 arm_m;  // contact point minus the wall frame's origin (the wall's torque)
-      };
-      std::vector<WallContactIn> win;
-      std::vector<WallContactOut> wout;
-      std::vector<WallSide> side;
+      KernelScratch& sc = s.thread_scratch_[static_cast<std::size_t>(t)];
+      std::vector<WallContactIn>& win = sc.wall_in;
+      std::vector<WallContactOut>& wout = sc.wall_out;
+      std::vector<WallSide>& side = sc.wall_side;
+      win.clear();
+      side.clear();
       const auto flush = [&] {
         wout.resize(win.size());
         wall_fn(wall_args, win.data(), win.size(), wout.data());
@@ -344,6 +347,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
           const WallContactOut& o = wout[i];
           const Vec3 f(o.force_on_sphere_n[0], o.force_on_sphere_n[1], o.force_on_sphere_n[2]);
           BodyAccumulator& Ab = A[c.body];
+          touched[c.body] = 1;
           Ab.force_n += f;
           Ab.torque_n_m += Vec3(o.torque_n_m[0], o.torque_n_m[1], o.torque_n_m[2]);
           WallAccumulator& Aw = WA[side[i].wall];
@@ -447,6 +451,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
         const ContactKinematics kin{normal, overlap, r, B.mass_kg[b], vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, wtang[k], dt, scale, clip);
         BodyAccumulator& Ab = A[b];
+        touched[b] = 1;
         Ab.force_n += cf.force_on_i_n;
         Ab.torque_n_m += rc.cross(cf.force_on_i_n);
         WallAccumulator& Aw = WA[ww[a]];

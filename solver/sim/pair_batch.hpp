@@ -35,6 +35,7 @@ struct PairBatchArgs {
   const double* spheres = nullptr;  // SphereView records
   const double* bodies = nullptr;   // BodyView records
   double* accumulators = nullptr;   // this thread's BodyAccumulator records
+  std::uint8_t* touched = nullptr;  // this thread's marks of the accumulators it wrote
   const BatchPairConstants* pair_constants = nullptr;  // [material_i * materials + material_j]
   std::size_t materials = 0;
   const std::uint32_t* si = nullptr;  // neighbour list: sphere i of pair k

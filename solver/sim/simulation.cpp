@@ -8,6 +8,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include "solver/contact/rolling_cdt.hpp"
 #include "solver/integrate/free_rotation.hpp"
 #include "solver/sim/contact_forces.hpp"
@@ -123,6 +127,31 @@ inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const
   return offset.isZero(0.0) ? body_position : Vec3(body_position + rotation * offset);
 }
 
+// Body b's part of a step: the last step's second half kick when pending (the same operations as
+// finish_kick()), then velocity Verlet's first half: kick with the same forces, drift, rotate.
+// A non-finite position, velocity or momentum lowers `bad` to b.
+[[gnu::always_inline]] inline void kick_drift_rotate(
+    std::size_t b, bool iso, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
+    Quat* __restrict rot, Vec3* __restrict vel, Vec3* __restrict mom, const Vec3* __restrict force,
+    const Vec3* __restrict torque, const double* __restrict inv_mass,
+    const Vec3* __restrict inv_inertia, std::int64_t& bad) {
+  Vec3 v_full = vel[b], L_full = mom[b];
+  if (kick) {
+    v_full = v_full + (hk * inv_mass[b]) * force[b];
+    L_full = L_full + hk * torque[b];
+  }
+  const Vec3 v = v_full + (h * inv_mass[b]) * force[b];
+  const Vec3 L = L_full + h * torque[b];
+  const Vec3 p = pos[b] + dt * v;
+  if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
+  Quat q = rot[b];
+  free_rotation_step(q, L, inv_inertia[b], iso, dt);
+  vel[b] = v;
+  mom[b] = L;
+  pos[b] = p;
+  rot[b] = q;
+}
+
 // The contact kernel's record of a body (sim/contact_view.hpp): half-step velocities and, for the
 // dashpots, v~ = v + h F / m with the given predicted angular velocity w~.
 inline void fill_body_view(BodyView& bv, const Vec3& v, const Vec3& w, const Vec3& w_end,
@@ -187,8 +216,12 @@ void Simulation::size_thread_buffers() {
   thread_body_acc_.resize(t);
   for (auto& acc : thread_body_acc_)
     if (acc.size() < nb) acc.resize(nb, zero);
+  thread_body_touched_.resize(t);
+  for (auto& touched : thread_body_touched_)
+    if (touched.size() < nb) touched.resize(nb, 0);
   thread_wall_acc_.assign(t, std::vector<WallAccumulator>(nw));
   thread_cdt_wall_.resize(t);
+  thread_scratch_.resize(t);
 }
 
 void Simulation::ensure_ready() {
@@ -264,20 +297,33 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
   // Raw pointers, so that the stores do not make the compiler reload the state.
   std::vector<BodyAccumulator*> acc_of(nt);
-  for (std::size_t t = 0; t < nt; ++t) acc_of[t] = thread_body_acc_[t].data();
+  std::vector<std::uint8_t*> touched_of(nt);
+  for (std::size_t t = 0; t < nt; ++t) {
+    acc_of[t] = thread_body_acc_[t].data();
+    touched_of[t] = thread_body_touched_[t].data();
+  }
+  std::vector<WallAccumulator*> wall_acc_of(nt);
+  for (std::size_t t = 0; t < nt; ++t) wall_acc_of[t] = thread_wall_acc_[t].data();
   BodyAccumulator* const* __restrict acc_ptr = acc_of.data();
+  std::uint8_t* const* __restrict touched_ptr = touched_of.data();
   const double* __restrict mass = bodies_.mass_kg.data();
   const Vec3* __restrict mom = bodies_.angular_momentum.data();
   const Vec3* __restrict omega = bodies_.angular_velocity.data();
   Vec3* __restrict force = bodies_.force_n.data();
   Vec3* __restrict torque = bodies_.torque_n_m.data();
   Vec3* __restrict cdt_u = cdt ? cdt_torque_per_capacity_.data() : nullptr;
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
+  WallAccumulator* const* __restrict wall_acc = wall_acc_of.data();
+#pragma omp parallel num_threads(options_.threads) if (options_.threads > 1) \
     reduction(min : first_bad)
+  {
+#pragma omp for schedule(static)
   for (std::size_t b = 0; b < nb; ++b) {
     Vec3 f = mass[b] * g, tq = Vec3::Zero();
     double capacity = 0.0;
     for (std::size_t t = 0; t < nt; ++t) {
+      // A thread's accumulator is read only where it wrote this step (the others hold zero).
+      if (!touched_ptr[t][b]) continue;
+      touched_ptr[t][b] = 0;
       BodyAccumulator& acc = acc_ptr[t][b];
       f += acc.force_n;
       tq += acc.torque_n_m;
@@ -300,6 +346,20 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
     if (!std::isfinite(f.sum() + tq.sum()))
       first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
   }
+  // (the barrier after the loop: every body's CDT direction is known)
+  // The walls take the reaction of their contacts' rolling torques (a drum feels it about its
+  // axis): each kernel thread's shares go into that thread's wall accumulators, summed below.
+  if (cdt) {
+    std::size_t tid = 0, team = 1;
+#ifdef _OPENMP
+    tid = static_cast<std::size_t>(omp_get_thread_num());
+    team = static_cast<std::size_t>(omp_get_num_threads());
+#endif
+    for (std::size_t t = tid; t < nt; t += team)
+      for (const CdtWallShare& share : thread_cdt_wall_[t])
+        wall_acc[t][share.wall].torque_n_m -= share.capacity_n_m * cdt_u[share.body];
+  }
+  }
   if (mid_step) {
     kick_pending_ = true;
     kick_dt_s_ = dt;
@@ -320,11 +380,6 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
     walls_[w].contact_stiffness_n_m = k;
     walls_[w].contacts = c;
   }
-  // The walls take the reaction of their contacts' rolling torques (a drum feels it about its axis).
-  if (cdt)
-    for (std::size_t t = 0; t < nt; ++t)
-      for (const CdtWallShare& share : thread_cdt_wall_[t])
-        walls_[share.wall].torque_n_m -= share.capacity_n_m * cdt_torque_per_capacity_[share.body];
   stats_ = StepStats{};
   stats_.sphere_contacts = total.sphere_contacts;
   stats_.wall_contacts = total.wall_contacts;
@@ -426,44 +481,49 @@ bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
   SphereView* __restrict sview = sphere_view_.data();
   double max_moved_sq = 0.0;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+  // Blocks of bodies, each in two passes: the kick, drift and rotation of the block's clumps,
+  // then the views and spheres of all its bodies (a sphere's kick, drift and rotation there). A
+  // clump's rotation is a chain of dependent operations (integrate/free_rotation.hpp); in a short
+  // first loop the processor overlaps the chains of several clumps, which the long fused loop did
+  // not let it do (clump bed, one thread: 2.13 -> 1.73 s per 20,000 steps). A block stays in the
+  // first-level cache between the passes; spheres stay in one pass, where a second costs more
+  // than it saves.
+  constexpr std::size_t kBlock = 32;
+  const std::size_t blocks = (nb + kBlock - 1) / kBlock;
 #pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
     reduction(max : max_moved_sq) reduction(min : bad)
-  for (std::size_t b = 0; b < nb; ++b) {
-    // The last step's second half kick (same operations as finish_kick()), then velocity Verlet's
-    // first half: kick with the same forces, then drift.
-    Vec3 v_full = vel[b], L_full = mom[b];
-    if (kick) {
-      v_full = v_full + (hk * inv_mass[b]) * force[b];
-      L_full = L_full + hk * torque[b];
-    }
-    const Vec3 v = v_full + (h * inv_mass[b]) * force[b];
-    const Vec3 L = L_full + h * torque[b];
-    const Vec3 p = pos[b] + dt * v;
-    if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
-    const bool iso = iso_flag[b] != 0;
-    Quat q = rot[b];
-    free_rotation_step(q, L, inv_inertia[b], iso, dt);
-    const Vec3 w = angular_velocity_from_momentum(q, inv_inertia[b], L, iso);
-    vel[b] = v;
-    mom[b] = L;
-    pos[b] = p;
-    rot[b] = q;
-    omega[b] = w;
-    fill_body_view(bview[b], v, w,
-                   angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso),
-                   force[b], inv_mass[b], h);
-    // The rotation matrix only when some sphere is off the centre of mass (not for a lone sphere).
-    Mat3 rotation;
-    bool rotated = false;
-    for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
-      if (!rotated && !offset[i].isZero(0.0)) {
-        rotation = sphere_rotation(q);
-        rotated = true;
+  for (std::size_t blk = 0; blk < blocks; ++blk) {
+    const std::size_t b_begin = blk * kBlock, b_end = std::min(nb, b_begin + kBlock);
+    for (std::size_t b = b_begin; b < b_end; ++b)
+      if (iso_flag[b] == 0)
+        kick_drift_rotate(b, false, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
+                          inv_inertia, bad);
+    for (std::size_t b = b_begin; b < b_end; ++b) {
+      const bool iso = iso_flag[b] != 0;
+      if (iso)  // a short rotation: no chain to overlap
+        kick_drift_rotate(b, true, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
+                          inv_inertia, bad);
+      const Vec3 v = vel[b], L = mom[b], p = pos[b];
+      const Quat q = rot[b];
+      const Vec3 w = angular_velocity_from_momentum(q, inv_inertia[b], L, iso);
+      omega[b] = w;
+      fill_body_view(bview[b], v, w,
+                     angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso),
+                     force[b], inv_mass[b], h);
+      // The rotation matrix only when some sphere is off the centre of mass (not for a lone
+      // sphere).
+      Mat3 rotation;
+      bool rotated = false;
+      for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
+        if (!rotated && !offset[i].isZero(0.0)) {
+          rotation = sphere_rotation(q);
+          rotated = true;
+        }
+        const Vec3 c = rotated ? sphere_centre(p, rotation, offset[i]) : p;
+        centre[i] = c;
+        fill_sphere_view(sview[i], c, radius[i], p, b, material[i]);
+        if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
       }
-      const Vec3 c = rotated ? sphere_centre(p, rotation, offset[i]) : p;
-      centre[i] = c;
-      fill_sphere_view(sview[i], c, radius[i], p, b, material[i]);
-      if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
     }
   }
   first_bad = bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;

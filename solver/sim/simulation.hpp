@@ -16,6 +16,7 @@
 #include "solver/sim/body_def.hpp"
 #include "solver/sim/contact_view.hpp"
 #include "solver/sim/guards.hpp"
+#include "solver/sim/kernel_scratch.hpp"
 #include "solver/walls/wall.hpp"
 #include "solver/walls/wall_contact_list.hpp"
 
@@ -189,6 +190,7 @@ class Simulation {
     double capacity_n_m;
   };
   std::vector<std::vector<CdtWallShare>> thread_cdt_wall_;
+  std::vector<KernelScratch> thread_scratch_;  // the contact kernel's buffers, one per thread
   std::vector<Vec3> cdt_torque_per_capacity_;
   // What the contact kernel reads (sim/contact_view.hpp): spheres and bodies, with the predicted
   // end-of-step velocities for the dashpots (contact/hertz_mindlin.hpp).
@@ -197,6 +199,9 @@ class Simulation {
   // Per-thread force, torque and rolling-capacity accumulators (at least one per body), reduced
   // in thread order (deterministic for a given thread count).
   std::vector<std::vector<BodyAccumulator>> thread_body_acc_;
+  // Per thread, 1 for a body whose accumulator the thread wrote this step: the reduction reads
+  // only those (a thread's contacts reach few of the other threads' bodies) and clears them.
+  std::vector<std::vector<std::uint8_t>> thread_body_touched_;
   std::vector<std::vector<WallAccumulator>> thread_wall_acc_;
   std::vector<WallPose> wall_pose_at_build_;
   std::vector<std::uint32_t> index_of_id_;
