@@ -426,7 +426,6 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
     }
     fail(RunStatus::deep_overlap, total.worst_body, m.str());
   }
-  forces_valid_ = true;
   lap(prof, t0, profile_.reduce_s);
   return first_bad == std::numeric_limits<std::int64_t>::max() ? -1 : first_bad;
 }

@@ -220,7 +220,6 @@ class Simulation {
   bool ready_ = false;
   bool kick_pending_ = false;  // finish_kick() not yet applied
   double kick_dt_s_ = 0.0;     // the step it belongs to
-  bool forces_valid_ = false;
 };
 
 }  // namespace seedcal
