@@ -4,6 +4,7 @@
 // before it decided from PipelineState, plans its DEM runs through the StudyEvaluator (which
 // answers finished runs from the store), and records its design and fits in the store.
 #include <algorithm>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -69,6 +70,9 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
 nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
 // Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
 // the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
-nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir);
+// The models run one after the other; after each but the last, st holds the partial selection
+// over the models verified so far and `on_model_done` (if set) is called with their number.
+nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir,
+                                const std::function<void(int models_done)>& on_model_done = {});
 
 }  // namespace seedcal

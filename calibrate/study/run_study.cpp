@@ -190,7 +190,12 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
 
   // Verification and model selection run only when the study asks for them (tests or models).
   if (!s.checks.empty() || s.models.size() > 1) {
-    const auto selection = run_verification(ev, st, store, o.out_dir);
+    const auto selection = run_verification(ev, st, store, o.out_dir, [&](int done) {
+      progress.log("verify: " + std::to_string(done) + " of " + std::to_string(s.models.size()) +
+                   " models verified, provisional choice " + st.selection["chosen"].dump());
+      checkpoint("verify");
+      write_study_report(o.out_dir, progress);
+    });
     progress.log("verify: chosen model " + selection["chosen"].dump() + ", " + std::to_string(ev.runs_used()) +
                  " DEM runs in all");
   }

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include <gsl/gsl_statistics_double.h>
@@ -77,36 +78,18 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
   return j;
 }
 
-}  // namespace
-
-nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir) {
-  const StudyConfig& s = ev.study();
+// Rows, Pareto front and choice over the first `done` models, whose records are all in
+// `records`; sets st.verification and st.selection and records the stage in the store. With
+// done < models the selection is marked partial: the choice is among the verified models only.
+nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore& store,
+                             const std::vector<EvaluationRecord>& records,
+                             const std::vector<std::vector<std::size_t>>& first, int done,
+                             const std::function<int(int)>& reps_of) {
   const int models = static_cast<int>(s.models.size());
   const int scenes = s.scene_count();
-  auto reps_of = [&](int t) {
-    const int r = s.scene_of(t).replicates;
-    return t >= static_cast<int>(s.targets.size()) && r > 0 ? r : s.verify.replicates;
-  };
-  int planned = 0;
-  for (int t = 0; t < scenes; ++t) planned += models * reps_of(t);
-  ev.announce("verify", planned);
-  std::vector<EvalRequest> requests;
-  std::vector<std::vector<std::size_t>> first(static_cast<std::size_t>(models), std::vector<std::size_t>(static_cast<std::size_t>(scenes)));
-  for (int m = 0; m < models; ++m)
-    for (int t = 0; t < scenes; ++t) {
-      first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] = requests.size();
-      for (int rep = 0; rep < reps_of(t); ++rep) {
-        const std::string dir = rep == 0 ? out_dir + "/scenes/" + slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
-                                               slug(s.scene_of(t).name)
-                                         : std::string();
-        requests.push_back(ev.plan_one("verify", st.chosen, t, m, dir));
-      }
-    }
-  const auto records = ev.run(requests);
-
   nlohmann::json rows = nlohmann::json::array();
-  std::vector<double> error(static_cast<std::size_t>(models)), cost(static_cast<std::size_t>(models));
-  for (int m = 0; m < models; ++m) {
+  std::vector<double> error(static_cast<std::size_t>(done)), cost(static_cast<std::size_t>(done));
+  for (int m = 0; m < done; ++m) {
     nlohmann::json tests = nlohmann::json::array();
     double sum_abs = 0.0, cpu = 0.0, spheres = 0.0;
     int with_value = 0, within = 0, with_sd = 0;
@@ -154,10 +137,10 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
   for (const double e : error)
     if (std::isfinite(e)) best = std::min(best, e);
   int chosen = -1;
-  for (int m = 0; m < models; ++m) {
+  for (int m = 0; m < done; ++m) {
     const auto i = static_cast<std::size_t>(m);
     bool dominated = !std::isfinite(error[i]);
-    for (int k = 0; k < models && !dominated; ++k) {
+    for (int k = 0; k < done && !dominated; ++k) {
       const auto j = static_cast<std::size_t>(k);
       if (k == m || !std::isfinite(error[j])) continue;
       dominated = error[j] <= error[i] && cost[j] <= cost[i] && (error[j] < error[i] || cost[j] < cost[i]);
@@ -174,8 +157,17 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
                 s.verify.error_margin, std::isfinite(best) ? best : 0.0);
   nlohmann::json selection = {{"rule", rule}, {"error_margin", s.verify.error_margin}, {"models", rows},
                               {"chosen", chosen >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(chosen)].name)
-                                                     : nlohmann::json(nullptr)}};
-  if (chosen < 0) selection["note"] = "no model has an error on every test with an experimental value";
+                                                     : nlohmann::json(nullptr)},
+                              {"models_verified", done}, {"models_planned", models}, {"partial", done < models}};
+  if (done < models) {
+    std::string waiting;
+    for (int m = done; m < models; ++m) waiting += (m > done ? ", " : "") + s.models[static_cast<std::size_t>(m)].name;
+    selection["note"] = "partial: " + std::to_string(done) + " of " + std::to_string(models) +
+                        " models verified (not yet: " + waiting +
+                        "); the choice is among the verified models only. An interrupted study continues with --resume";
+  } else if (chosen < 0) {
+    selection["note"] = "no model has an error on every test with an experimental value";
+  }
   nlohmann::json at = nlohmann::json::object();
   for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
   const int shown = chosen >= 0 ? chosen : 0;
@@ -183,6 +175,53 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
                      {"tests", rows[static_cast<std::size_t>(shown)]["tests"]}};
   st.selection = selection;
   store.set_stage("verify", {{"point", at}, {"replicates", s.verify.replicates}, {"selection", selection}});
+  return selection;
+}
+
+}  // namespace
+
+nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir,
+                                 const std::function<void(int models_done)>& on_model_done) {
+  const StudyConfig& s = ev.study();
+  const int models = static_cast<int>(s.models.size());
+  const int scenes = s.scene_count();
+  const std::function<int(int)> reps_of = [&](int t) {
+    const int r = s.scene_of(t).replicates;
+    return t >= static_cast<int>(s.targets.size()) && r > 0 ? r : s.verify.replicates;
+  };
+  int planned = 0;
+  for (int t = 0; t < scenes; ++t) planned += models * reps_of(t);
+  ev.announce("verify", planned);
+  // Every request is planned first (the seeds follow the plan order, so a resumed study plans the
+  // same seeds), then run one model at a time: a long selection (hours at paper fidelity) shows
+  // each finished model in summary.json and the report while the next one runs.
+  std::vector<EvalRequest> requests;
+  std::vector<std::size_t> model_begin;
+  std::vector<std::vector<std::size_t>> first(static_cast<std::size_t>(models), std::vector<std::size_t>(static_cast<std::size_t>(scenes)));
+  for (int m = 0; m < models; ++m) {
+    model_begin.push_back(requests.size());
+    for (int t = 0; t < scenes; ++t) {
+      first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] = requests.size();
+      for (int rep = 0; rep < reps_of(t); ++rep) {
+        const std::string dir = rep == 0 ? out_dir + "/scenes/" + slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
+                                               slug(s.scene_of(t).name)
+                                         : std::string();
+        requests.push_back(ev.plan_one("verify", st.chosen, t, m, dir));
+      }
+    }
+  }
+  model_begin.push_back(requests.size());
+  std::vector<EvaluationRecord> records;
+  records.reserve(requests.size());
+  nlohmann::json selection;
+  for (int m = 0; m < models; ++m) {
+    const auto b = static_cast<std::ptrdiff_t>(model_begin[static_cast<std::size_t>(m)]);
+    const auto e = static_cast<std::ptrdiff_t>(model_begin[static_cast<std::size_t>(m) + 1]);
+    auto done = ev.run(std::vector<EvalRequest>(requests.begin() + b, requests.begin() + e));
+    for (auto& r : done) records.push_back(std::move(r));
+    selection = select_models(s, st, store, records, first, m + 1, reps_of);
+    if (on_model_done && m + 1 < models) on_model_done(m + 1);
+  }
   return selection;
 }
 

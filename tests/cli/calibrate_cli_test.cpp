@@ -252,6 +252,15 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
   // Verification runs are counted apart from the calibration's.
   EXPECT_EQ(s["evaluations_total"].get<int>(), s["evaluations"].get<int>() + 2 * (2 + 2 + 1));
   EXPECT_TRUE(std::filesystem::is_directory(dir + "/out/scenes/dt_2e_8/peak_force"));
+  // The models run one after the other; after the first, summary.json and the report already
+  // held its row as a provisional choice (a long selection shows each finished model).
+  EXPECT_EQ(sel["models_verified"], 2);
+  EXPECT_EQ(sel["models_planned"], 2);
+  EXPECT_FALSE(sel["partial"].get<bool>());
+  EXPECT_FALSE(sel.contains("note")) << sel.dump(1);
+  const std::string log = read_text(dir + "/out/calibrate.log");
+  EXPECT_NE(log.find("verify: 1 of 2 models verified, provisional choice \"dt-2e-8\""), std::string::npos) << log;
+  EXPECT_LT(log.find("verify: 1 of 2 models verified"), log.find("verify 6/"));  // before model 2's first run ends
   std::filesystem::remove_all(dir);
 }
 // One parameter of a deterministic scene: the Plackett-Burman dummy columns carry no error at
