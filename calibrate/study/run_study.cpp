@@ -55,8 +55,9 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   j["evaluations"] = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
   j["evaluations_total"] = ev.runs_used();
   j["evaluations_from_store"] = ev.runs_reused();
-  j["classical_workflow_evaluations"] =
-      3 * (s.screen.runs + 5 + 13) + 3;  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations
+  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations; every point runs every
+  // target's test (a joint study of two tests runs both at each point).
+  j["classical_workflow_evaluations"] = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
   j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
   j["tolerance"] = s.confirm.tolerance;
   if (!st.verification.is_null()) j["verification"] = st.verification;

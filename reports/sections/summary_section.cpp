@@ -22,7 +22,7 @@ void add_summary_section(const StudyData& d, Document& doc) {
   row("DEM evaluations (calibration)", "evaluations");
   row("DEM evaluations (with verification)", "evaluations_total");
   row("  of which answered from the store", "evaluations_from_store");
-  row("classical workflow (PB + path + CCD, 3 replicates, + 3 confirmations)", "classical_workflow_evaluations");
+  row("classical workflow (PB + path + CCD, 3 replicates, + 3 confirmations; every target's test at each point)", "classical_workflow_evaluations");
   const double used = as_number(j.value("evaluations", nlohmann::json())), classical = as_number(j.value("classical_workflow_evaluations", nlohmann::json()));
   if (std::isfinite(used) && std::isfinite(classical) && classical > 0)
     run.add_row({"evaluations / classical workflow", format_number(used / classical, 3)});

@@ -126,6 +126,8 @@ TEST(CalibrateCli, JointTargetsIdentifyTwoUnknowns) {
   EXPECT_NEAR(s["calibrated"]["materials.glass.density_kg_m3"].get<double>() / rho0, 1.0, 0.05) << s.dump(1);
   for (const char* metric : {"contact_duration_s", "max_normal_force_n"})
     EXPECT_LE(std::fabs(s["confirmed"][metric]["rel_error"].get<double>()), 0.005) << metric;
+  // The classical workflow would run both tests at every point of its designs.
+  EXPECT_EQ(s["classical_workflow_evaluations"], 2 * (3 * (8 + 5 + 13) + 3)) << s.dump(1);
   std::filesystem::remove_all(dir);
 }
 
