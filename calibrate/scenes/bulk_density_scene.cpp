@@ -20,6 +20,7 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
 
   const BulkDensityResult r = run_bulk_density(spec);
   nlohmann::json j;

@@ -32,6 +32,7 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
 
   const DirectShearResult r = run_direct_shear(spec);
   nlohmann::json j;

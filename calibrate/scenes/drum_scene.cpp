@@ -24,6 +24,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
 
   const DrumResult r = run_drum(spec);
   nlohmann::json j;

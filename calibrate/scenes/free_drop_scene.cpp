@@ -29,6 +29,7 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
 
   const FreeDropResult r = run_free_drop(spec);
   nlohmann::json j;

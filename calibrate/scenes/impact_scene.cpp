@@ -91,6 +91,7 @@ nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
 
   const ImpactResult r = run_impact(spec);
   nlohmann::json j;

@@ -27,6 +27,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
 
   const PilingResult r = run_piling(spec);
   nlohmann::json j;

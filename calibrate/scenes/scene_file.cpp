@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "calibrate/cli/errors.hpp"
+#include "calibrate/config/output_config.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "solver/core/errors.hpp"
@@ -32,6 +33,21 @@ SceneFile load_scene_file(const std::string& path, const std::vector<std::string
   f.repeats = static_cast<int>(root.integer("repeats", 1, 1000, 1));
   diag->throw_if_any();
   return f;
+}
+
+void check_scene(const SceneFile& f) {
+  auto diag = std::make_shared<ConfigDiagnostics>();
+  diag->file = f.path;
+  TomlReader root(f.doc, "", diag);
+  root.integer("repeats", 1, 1000, 1);
+  read_output(root);
+  SceneContext ctx{f.path, "", 1, 0, {}};
+  ctx.check_only = true;
+  try {
+    (*f.runner)(root, ctx);
+  } catch (const SettingError& e) {
+    throw InputError(f.path + ": " + e.what());
+  }
 }
 
 nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir) {

@@ -25,6 +25,10 @@ struct SceneFile {
 
 SceneFile load_scene_file(const std::string& path, const std::vector<std::string>& sets);
 
+// Reads every key of the scene as a run would ([output] and `repeats` included) and throws
+// InputError naming the file, key, value and range for the first bad one; runs nothing.
+void check_scene(const SceneFile& scene);
+
 // Runs `repeats` seeds (seed, seed + 1, ...); repeats = 0: the file's own `repeats`.
 nlohmann::json run_scene(const SceneFile& scene, int threads, std::uint64_t seed, int repeats,
                          const std::string& out_dir = "");

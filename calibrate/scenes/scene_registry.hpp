@@ -19,6 +19,7 @@ struct SceneContext {
   int threads = 1;
   std::uint64_t seed = 0;
   FrameObserver observer;  // the run's frames ([output] trajectory = true); runners pass it on
+  bool check_only = false;  // read and validate the whole config, then return without running
 };
 
 using SceneRunner = std::function<nlohmann::json(TomlReader& root, const SceneContext& ctx)>;

@@ -9,6 +9,7 @@
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/io/atomic_file.hpp"
 #include "calibrate/study/pipeline.hpp"
+#include "calibrate/study/scene_check.hpp"
 #include "reports/report.hpp"
 
 namespace seedcal {
@@ -136,6 +137,7 @@ WorkerCommand worker_command(const StudyRunOptions& o) {
 
 nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   const StudyConfig s = read_study(o.study_file, o.sets);
+  check_study_scenes(s);  // bad input is refused before any run (exit 2)
   const std::string hash = study_fingerprint(s);
   std::unique_ptr<Executor> own;
   if (!executor) {

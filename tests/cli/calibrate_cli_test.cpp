@@ -148,6 +148,15 @@ TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
        "confirm.max_evaluations = 10: too small"},
       {"[[target]]\nscene = \"nowhere.toml\"\nmetric = \"m\"\nvalue = 1.0\n[[parameter]]\npath = \"a.b\"\nlow = 1.0\n"
        "high = 2.0\ncalibrate = true\n", "nowhere.toml"},
+      // The scenes are checked as a run reads them, before the first run: a misspelt override,
+      // a parameter the scene does not have, a limit outside the scene key's range.
+      {"[[target]]\nscene = \"" + source_dir() + kScene + "\"\nset = [\"duraton_s=1.0e-4\"]\nmetric = \"contact_duration_s\"\n"
+       "value = 4.7e-5\n" + parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n"),
+       "duraton_s is not a known key"},
+      {t + parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n") +
+       parameter("glass_glass.restitusion", 0.6, 0.9), "restitusion"},
+      {t + parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n") +
+       parameter("glass_glass.restitution", 0.6, 0.9, "max = 1.5\n"), "upper limits (max)"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const std::string file = dir + "/bad" + std::to_string(i) + ".toml";

@@ -1,0 +1,58 @@
+#include "calibrate/study/scene_check.hpp"
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "calibrate/cli/errors.hpp"
+#include "calibrate/scenes/scene_file.hpp"
+
+namespace seedcal {
+namespace {
+
+std::string exact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+void check_study_scenes(const StudyConfig& s) {
+  // The parameters all at their nominal values, all at their lower limits, all at their upper
+  // limits: each scene key's range is checked on its own, so this covers every value the
+  // screening, the ascent and the surrogate may set.
+  struct Setting {
+    const char* label;
+    double StudyParameter::*value;
+  };
+  const Setting settings[] = {{"nominal", &StudyParameter::nominal},
+                              {"lower limits (min)", &StudyParameter::min},
+                              {"upper limits (max)", &StudyParameter::max}};
+  std::vector<std::string> problems;
+  for (const StudyModel& model : s.models) {
+    for (int i = 0; i < s.scene_count(); ++i) {
+      const StudyTarget& t = s.scene_of(i);
+      for (const Setting& at : settings) {
+        std::vector<std::string> sets = model.sets;
+        sets.insert(sets.end(), t.sets.begin(), t.sets.end());
+        for (const StudyParameter& p : s.parameters) sets.push_back(p.path + "=" + exact(p.*at.value));
+        try {
+          check_scene(load_scene_file(t.scene, sets));
+        } catch (const InputError& e) {
+          const std::string where = s.file + ": " + (i < static_cast<int>(s.targets.size()) ? "target" : "verification test") +
+                                    " \"" + t.name + "\" under model \"" + model.name + "\", parameters at their " +
+                                    at.label + ": ";
+          for (const std::string& m : e.problems()) problems.push_back(where + m);
+          break;  // one report per test and model
+        } catch (const std::exception& e) {
+          problems.push_back(s.file + ": scene " + t.scene + " under model \"" + model.name + "\": " + e.what());
+          break;
+        }
+      }
+    }
+  }
+  if (!problems.empty()) throw InputError(problems);
+}
+
+}  // namespace seedcal
