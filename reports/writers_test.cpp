@@ -149,7 +149,9 @@ StudyData fixture(const fs::path& dir) {
       {"test": "piling", "metric": "angle_of_repose_deg", "label": "piling", "mean": 30.1, "sd": 1.2, "n": 3, "samples": [29, 30, 31.3],
        "experimental_mean": 31.2, "experimental_sd": 0.9, "rel_error": -0.035, "within_sd": false, "cpu_seconds": 40.0},
       {"test": "drum", "label": "drum 5 rpm", "rpm": 5, "metric": "dynamic_angle_deg", "mean": 35.0, "sd": 0.8, "n": 2,
-       "experimental_mean": null, "experimental_sd": null, "rel_error": null, "within_sd": null, "cpu_seconds": 80.0}]},
+       "experimental_mean": null, "experimental_sd": null, "rel_error": null, "within_sd": null, "cpu_seconds": 80.0},
+      {"test": "shear", "label": "shear", "metric": "shear_strength_pa", "mean": 120000.0, "sd": 9000.0, "n": 2,
+       "experimental_mean": 118230.0, "experimental_sd": null, "rel_error": 0.015, "within_sd": null, "cpu_seconds": 5.0}]},
     "model_selection": {"rule": "cheapest model within 2 % of the lowest mean |error|", "chosen": "manual-9", "models": [
       {"model": "manual-9", "spheres": 9, "mean_abs_rel_error": 0.05, "cpu_seconds": 300.0, "score": 1.0, "pareto": true, "calibrated": {"seed_seed.static_friction": 0.5}},
       {"model": "auto-3", "spheres": 3, "mean_abs_rel_error": 0.12, "cpu_seconds": 90.0, "score": 0.7, "pareto": true, "calibrated": {"seed_seed.static_friction": 0.6}},
@@ -180,6 +182,8 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
   EXPECT_FALSE(files.empty());
   const std::string html = slurp(dir / "report.html"), md = slurp(dir / "report.md");
   EXPECT_NE(html.find("simulation only"), std::string::npos);
+  // An experiment with a mean and no sd: the error is given, the within-sd test is not applicable.
+  EXPECT_NE(html.find("n/a (no experimental sd)"), std::string::npos);
   EXPECT_NE(html.find("drum 5 rpm"), std::string::npos);
   EXPECT_NE(html.find("Needs a newer study store"), std::string::npos);
   EXPECT_NE(md.find("(scenes/piling/side_view.svg)"), std::string::npos) << md;

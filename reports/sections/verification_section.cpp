@@ -19,7 +19,9 @@ std::vector<std::string> test_row(const nlohmann::json& x) {
           sim_only ? "simulation only" : format_value(x["experimental_mean"]),
           sim_only ? "simulation only" : format_value(x.value("experimental_sd", nlohmann::json())),
           sim_only ? "simulation only" : format_percent(x.value("rel_error", nlohmann::json())),
-          sim_only || x.value("within_sd", nlohmann::json()).is_null() ? "simulation only" : format_value(x["within_sd"]),
+          sim_only ? "simulation only"
+          : x.value("within_sd", nlohmann::json()).is_null() ? "n/a (no experimental sd)"
+                                                             : format_value(x["within_sd"]),
           format_value(x.value("cpu_seconds", nlohmann::json()))};
 }
 
