@@ -70,8 +70,8 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
 nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
 // Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
 // the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
-// The models run one after the other; after each but the last, st holds the partial selection
-// over the models verified so far and `on_model_done` (if set) is called with their number.
+// All runs form one batch in model order; whenever the first k < models models have every run,
+// st holds the partial selection over them and `on_model_done` (if set) is called with k.
 nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir,
                                 const std::function<void(int models_done)>& on_model_done = {});
 

@@ -96,8 +96,7 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   }
   if (stages.contains("confirm")) digest["confirm_stop_reason"] = stages["confirm"].value("stop_reason", std::string("running"));
   j["stages"] = digest;
-  double cpu = 0.0, cpu_verify = 0.0;
-  for (const auto& r : ev.history()) (r.stage == "verify" ? cpu_verify : cpu) += r.cpu_seconds;
+  const double cpu = ev.calibration_cpu_seconds(), cpu_verify = ev.verification_cpu_seconds();
   j["cpu_seconds"] = cpu + cpu_verify;
   j["calibration_cpu_seconds"] = cpu;
   j["verification_cpu_seconds"] = cpu_verify;

@@ -33,7 +33,8 @@ EvalRequest StudyEvaluator::plan_one(const std::string& stage, const Eigen::Vect
   return r;
 }
 
-std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>& requests) {
+std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>& requests,
+                                                  const std::function<void(std::size_t, const EvaluationRecord&)>& on_record) {
   std::vector<EvaluationRecord> out(requests.size());
   std::vector<EvalRequest> todo;
   std::vector<std::size_t> where;
@@ -53,6 +54,8 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     out[i] = r;
     ++reused_;
     progress_.run_done(true, r.wall_seconds, "seed " + std::to_string(r.seed) + " " + r.status);
+    count_cpu(r);
+    if (on_record) on_record(i, out[i]);
   }
   executor_.run(todo, [&](std::size_t k, EvaluationRecord rec) {
     rec.id = 0;
@@ -64,7 +67,9 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     std::snprintf(what, sizeof what, "seed %llu target %s: %s %.6g (%.1f s)", static_cast<unsigned long long>(rec.seed),
                   rec.metrics.value("study_target_name", "?").c_str(), rec.status.c_str(), v, rec.wall_seconds);
     progress_.run_done(false, rec.wall_seconds, std::string(what) + (rec.status == "ok" ? "" : ": " + rec.message));
+    count_cpu(rec);
     out[where[k]] = std::move(rec);
+    if (on_record) on_record(where[k], out[where[k]]);
   });
   for (const auto& r : out) {
     history_.push_back(r);

@@ -4,6 +4,7 @@
 // already in the store from the store, runs the others on the executor, and appends each record
 // to the store the moment it arrives.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -27,8 +28,10 @@ class StudyEvaluator {
   // scene to write its CSV and picture there.
   EvalRequest plan_one(const std::string& stage, const Eigen::VectorXd& natural, int scene, int model,
                        const std::string& out_dir = "");
-  // Runs the requests (store first), returns the records in request order.
-  std::vector<EvaluationRecord> run(const std::vector<EvalRequest>& requests);
+  // Runs the requests (store first), returns the records in request order. `on_record`, when
+  // set, is called with each request's index and record as it arrives (stored ones first).
+  std::vector<EvaluationRecord> run(const std::vector<EvalRequest>& requests,
+                                    const std::function<void(std::size_t, const EvaluationRecord&)>& on_record = {});
 
   // Tells the progress display a new stage (or round) begins with `planned` runs.
   void announce(const std::string& stage, int planned) { progress_.stage(stage, planned); }
@@ -36,8 +39,12 @@ class StudyEvaluator {
 
   int runs_used() const { return used_; }        // DEM runs of this plan so far (replicates included)
   int runs_reused() const { return reused_; }    // of those, answered from the store
-  // Every record of this plan so far, in plan order.
+  // Every record of this plan so far, in plan order (a batch joins when the whole batch is in).
   const std::vector<EvaluationRecord>& history() const { return history_; }
+  // CPU seconds of this plan's records so far, counted as each record arrives (also mid-batch):
+  // the verification runs and all the others.
+  double verification_cpu_seconds() const { return cpu_verify_; }
+  double calibration_cpu_seconds() const { return cpu_other_; }
   const StudyConfig& study() const { return study_; }
   Eigen::VectorXd inputs_vector(const EvaluationRecord& r) const;  // natural, study order
 
@@ -50,6 +57,8 @@ class StudyEvaluator {
   std::map<std::uint64_t, std::size_t> stored_;  // seed -> index in the store
   std::vector<EvaluationRecord> history_;
   int used_ = 0, reused_ = 0;
+  double cpu_verify_ = 0.0, cpu_other_ = 0.0;
+  void count_cpu(const EvaluationRecord& r) { (r.stage == "verify" ? cpu_verify_ : cpu_other_) += r.cpu_seconds; }
 };
 
 }  // namespace seedcal

@@ -192,14 +192,14 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
   int planned = 0;
   for (int t = 0; t < scenes; ++t) planned += models * reps_of(t);
   ev.announce("verify", planned);
-  // Every request is planned first (the seeds follow the plan order, so a resumed study plans the
-  // same seeds), then run one model at a time: a long selection (hours at paper fidelity) shows
-  // each finished model in summary.json and the report while the next one runs.
+  // Every request is planned in model order and run as one batch (a long run of one model
+  // overlaps the next model's runs on the --jobs slots). As soon as every run of the first k
+  // models is in, the selection over those k models is made and `on_model_done(k)` writes it:
+  // a selection of hours at paper fidelity shows each finished model while the rest run.
   std::vector<EvalRequest> requests;
-  std::vector<std::size_t> model_begin;
+  std::vector<int> model_of;
   std::vector<std::vector<std::size_t>> first(static_cast<std::size_t>(models), std::vector<std::size_t>(static_cast<std::size_t>(scenes)));
   for (int m = 0; m < models; ++m) {
-    model_begin.push_back(requests.size());
     for (int t = 0; t < scenes; ++t) {
       first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] = requests.size();
       for (int rep = 0; rep < reps_of(t); ++rep) {
@@ -207,22 +207,25 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
                                                slug(s.scene_of(t).name)
                                          : std::string();
         requests.push_back(ev.plan_one("verify", st.chosen, t, m, dir));
+        model_of.push_back(m);
       }
     }
   }
-  model_begin.push_back(requests.size());
-  std::vector<EvaluationRecord> records;
-  records.reserve(requests.size());
-  nlohmann::json selection;
-  for (int m = 0; m < models; ++m) {
-    const auto b = static_cast<std::ptrdiff_t>(model_begin[static_cast<std::size_t>(m)]);
-    const auto e = static_cast<std::ptrdiff_t>(model_begin[static_cast<std::size_t>(m) + 1]);
-    auto done = ev.run(std::vector<EvalRequest>(requests.begin() + b, requests.begin() + e));
-    for (auto& r : done) records.push_back(std::move(r));
-    selection = select_models(s, st, store, records, first, m + 1, reps_of);
-    if (on_model_done && m + 1 < models) on_model_done(m + 1);
-  }
-  return selection;
+  std::vector<EvaluationRecord> arrived(requests.size());
+  std::vector<int> missing(static_cast<std::size_t>(models), 0);
+  for (const int m : model_of) ++missing[static_cast<std::size_t>(m)];
+  int complete = 0;  // models 0 .. complete-1 have every record
+  const auto records = ev.run(requests, [&](std::size_t i, const EvaluationRecord& r) {
+    arrived[i] = r;
+    --missing[static_cast<std::size_t>(model_of[i])];
+    const int before = complete;
+    while (complete < models && missing[static_cast<std::size_t>(complete)] == 0) ++complete;
+    if (complete > before && complete < models) {
+      select_models(s, st, store, arrived, first, complete, reps_of);
+      if (on_model_done) on_model_done(complete);
+    }
+  });
+  return select_models(s, st, store, records, first, models, reps_of);
 }
 
 }  // namespace seedcal
