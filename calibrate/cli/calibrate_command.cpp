@@ -1,6 +1,7 @@
 // `seedcal calibrate STUDY.toml --out DIR [--resume] [--jobs J] [--threads T] [--set k=v]`: the
 // calibration pipeline (docs/calibrate.md). Under mpirun, rank 0 plans and the other ranks run
 // the simulations. `seedcal calibrate-worker` is the local worker process it starts itself.
+#include <cstdlib>
 #include <iostream>
 #include <unistd.h>
 
@@ -68,7 +69,9 @@ void add_calibrate_command(CLI::App& app, GlobalOptions& g) {
   worker->callback([w, &g] {
     const StudyConfig s = read_study(w->study, w->sets);
     const int rc = run_worker_loop(s, std::max(1, g.threads), study_fingerprint(s), STDIN_FILENO, STDOUT_FILENO);
-    if (rc != 0) throw RunFailed("calibrate-worker: lost the connection to the study");
+    // The study process is gone (it ended, was stopped for bad input, or was killed): nobody reads
+    // this exit code, and a message would only repeat on the study's terminal.
+    if (rc != 0) std::exit(kExitRunFailed);
   });
 }
 

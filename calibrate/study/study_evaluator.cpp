@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "calibrate/cli/errors.hpp"
+#include "calibrate/config/toml_reader.hpp"
 
 namespace seedcal {
 
@@ -54,6 +55,7 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     out[i] = r;
     ++reused_;
     progress_.run_done(true, r.wall_seconds, "seed " + std::to_string(r.seed) + " " + r.status);
+    refuse_missing_metric(r);
     count_cpu(r);
     if (on_record) on_record(i, out[i]);
   }
@@ -68,6 +70,7 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
                   rec.metrics.value("study_target_name", "?").c_str(), rec.status.c_str(), v, rec.wall_seconds);
     progress_.run_done(false, rec.wall_seconds, std::string(what) + (rec.status == "ok" ? "" : ": " + rec.message));
     count_cpu(rec);
+    refuse_missing_metric(rec);
     out[where[k]] = std::move(rec);
     if (on_record) on_record(where[k], out[where[k]]);
   });
@@ -81,6 +84,28 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
       progress_.best_error(v / study_.targets[static_cast<std::size_t>(t)].value - 1.0);
   }
   return out;
+}
+
+// A run that the scene finished ("ok") but whose metrics lack the study's metric key is a study
+// file error (a misspelt metric), not a failed run: every other run would fail the same way, so
+// the study stops at the first one (its record is stored) with the scene's metric keys.
+void StudyEvaluator::refuse_missing_metric(const EvaluationRecord& rec) const {
+  if (rec.status == "ok" || rec.metrics.value("status", std::string()) != "ok") return;
+  const int t = record_target(rec);
+  if (t < 0 || t >= study_.scene_count()) return;
+  const StudyTarget& target = study_.scene_of(t);
+  if (rec.metrics.contains(target.metric)) return;  // present but not finite: the run's problem
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : rec.metrics.items())
+    if (value.is_number() && key.rfind("study_", 0) != 0) keys.push_back(key);
+  std::string msg = study_.file + ": " + (t < static_cast<int>(study_.targets.size()) ? "target" : "verification test") +
+                    " \"" + target.name + "\": metric = \"" + target.metric + "\": " + target.scene +
+                    " reports no such metric";
+  const std::string hint = did_you_mean(target.metric, keys);
+  if (!hint.empty()) msg += " (did you mean \"" + hint + "\"?)";
+  std::string list;
+  for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+  throw InputError(msg + "; its metrics: " + list);
 }
 
 Eigen::VectorXd StudyEvaluator::inputs_vector(const EvaluationRecord& r) const {

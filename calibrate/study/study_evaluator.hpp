@@ -58,6 +58,7 @@ class StudyEvaluator {
   std::vector<EvaluationRecord> history_;
   int used_ = 0, reused_ = 0;
   double cpu_verify_ = 0.0, cpu_other_ = 0.0;
+  void refuse_missing_metric(const EvaluationRecord& rec) const;
   void count_cpu(const EvaluationRecord& r) { (r.stage == "verify" ? cpu_verify_ : cpu_other_) += r.cpu_seconds; }
 };
 

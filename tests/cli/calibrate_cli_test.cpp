@@ -274,6 +274,25 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
   EXPECT_LT(log.find("verify: 1 of 2 models verified"), log.find("verify 6/"));  // before model 2's first run ends
   std::filesystem::remove_all(dir);
 }
+// A metric the scene does not report is a study file error: the study stops at the first run
+// that finishes (exit 2, the scene's metric keys and the closest one named), instead of failing
+// every run of the screening and the surrogate design; a resume with the same file says it again.
+TEST(CalibrateCli, MisspeltMetricStopsAtTheFirstRun) {
+  const std::string dir = scratch_dir("calibrate-metric");
+  const auto r = calibrate_study(dir, study_text(target("contact_duraton_s", 4.7e-5), 0.002));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("metric = \"contact_duraton_s\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("did you mean \"contact_duration_s\""), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("lost the connection"), std::string::npos) << r.output;
+  const std::string log = read_text(dir + "/out/calibrate.log");
+  EXPECT_EQ(log.find("screen 3/"), std::string::npos) << log;  // at most the two runs in flight
+  const auto again = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --threads 1");
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_NE(again.output.find("contact_duraton_s"), std::string::npos) << again.output;
+  std::filesystem::remove_all(dir);
+}
+
 // One parameter of a deterministic scene: the Plackett-Burman dummy columns carry no error at
 // all (se = 0), so the effect has no t test; it is kept as exact, and nothing non-finite reaches
 // summary.json.
