@@ -135,7 +135,16 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
       report["targets"].push_back(tj);
       continue;
     }
-    const auto a = analyze(d, yt, names);
+    doe::EffectsAnalysis a;
+    try {
+      a = analyze(d, yt, names);
+    } catch (const std::exception& e) {
+      // Failed runs can leave a pattern of finished runs that confounds factors: no effects
+      // then, as with too few runs (the failures are in the log and the store).
+      tj["analysis"] = std::string("the finished runs cannot separate the effects: ") + e.what();
+      report["targets"].push_back(tj);
+      continue;
+    }
     tj["error_source"] = a.error_source;
     tj["df_error"] = a.df_error;
     tj["effects"] = nlohmann::json::array();

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 
+#include "calibrate/cli/errors.hpp"
 #include "calibrate/study/pipeline.hpp"
 #include "doe/designs/box_behnken.hpp"
 #include "doe/designs/central_composite.hpp"
@@ -317,7 +318,21 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
     Eigen::VectorXd y;
     gather_surrogate_data(ev, st, static_cast<int>(t), &U, &y);
     const double floor = t < st.run_noise_var_floor.size() ? st.run_noise_var_floor[t] : 0.0;
-    fits.push_back(fit_target(s, U, y, names, floor));
+    try {
+      fits.push_back(fit_target(s, U, y, names, floor));
+    } catch (const std::exception& e) {
+      // Too few runs succeeded for any surrogate: say why they failed (the first failure), not
+      // only that the fit had too few points. Each failure is in study.h5 and the log.
+      std::string why;
+      int failed = 0;
+      for (const auto& r : ev.history())
+        if (record_target(r) == static_cast<int>(t) && r.status != "ok") {
+          if (why.empty()) why = r.status + ": " + r.message;
+          ++failed;
+        }
+      throw RunFailed("target \"" + s.targets[t].name + "\": " + e.what() + " (" + std::to_string(failed) +
+                      " runs of this target failed" + (why.empty() ? std::string() : "; the first: " + why) + ")");
+    }
     nlohmann::json fr = fits.back().report;
     fr["name"] = s.targets[t].name;
     Eigen::MatrixXd natural(U.rows(), U.cols());

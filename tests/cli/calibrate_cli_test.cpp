@@ -293,6 +293,23 @@ TEST(CalibrateCli, MisspeltMetricStopsAtTheFirstRun) {
   std::filesystem::remove_all(dir);
 }
 
+// Runs that fail (here a fixed time step above the stable limit for the stiffer half of the
+// range) leave the screening without an effects analysis and the surrogate without enough points:
+// the study ends as a failed run (exit 1) that names the target and the first failure's reason,
+// not as an internal error.
+TEST(CalibrateCli, FailingRunsEndWithTheirReason) {
+  const std::string dir = scratch_dir("calibrate-failing");
+  std::string study = study_text(target("contact_duration_s", 4.7e-5), 0.002);
+  const std::string fixed = "\"dt_s=2.0e-8\"";
+  study.replace(study.find(fixed), fixed.size(), "\"dt_s=5.0e-6\"");
+  const auto r = calibrate_study(dir, study);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("target \"contact_duration_s\""), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("above the stable limit"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << r.output;
+  std::filesystem::remove_all(dir);
+}
+
 // One parameter of a deterministic scene: the Plackett-Burman dummy columns carry no error at
 // all (se = 0), so the effect has no t test; it is kept as exact, and nothing non-finite reaches
 // summary.json.
