@@ -95,6 +95,10 @@ void StudyEvaluator::refuse_missing_metric(const EvaluationRecord& rec) const {
   if (t < 0 || t >= study_.scene_count()) return;
   const StudyTarget& target = study_.scene_of(t);
   if (rec.metrics.contains(target.metric)) return;  // present but not finite: the run's problem
+  // A non-finite index is removed from the metrics and listed (scene_registry.cpp): also the run's
+  // problem, not the study file's.
+  for (const auto& removed : rec.metrics.value("non_finite_removed", nlohmann::json::array()))
+    if (removed.is_string() && removed.get<std::string>() == target.metric) return;
   std::vector<std::string> keys;
   for (const auto& [key, value] : rec.metrics.items())
     if (value.is_number() && key.rfind("study_", 0) != 0) keys.push_back(key);
