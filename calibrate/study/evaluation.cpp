@@ -22,6 +22,13 @@ std::string number_text(double v) {
 
 }  // namespace
 
+std::vector<std::string> scene_overrides(const StudyModel& model, const StudyTarget& test, const nlohmann::json& inputs) {
+  std::vector<std::string> sets = model.sets;
+  sets.insert(sets.end(), test.sets.begin(), test.sets.end());
+  for (const auto& [path, value] : inputs.items()) sets.push_back(path + "=" + number_text(value.get<double>()));
+  return sets;
+}
+
 nlohmann::json EvalRequest::to_json() const {
   nlohmann::json j = {{"stage", stage}, {"target", target}, {"inputs", inputs}, {"seed", seed}};
   if (model != 0) j["model"] = model;
@@ -53,10 +60,8 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   try {
-    std::vector<std::string> sets = model.sets;
-    sets.insert(sets.end(), target.sets.begin(), target.sets.end());
-    for (const auto& [path, value] : request.inputs.items()) sets.push_back(path + "=" + number_text(value.get<double>()));
-    rec.metrics = run_scene_file(target.scene, sets, threads, request.seed, 1, request.out_dir);
+    rec.metrics = run_scene_file(target.scene, scene_overrides(model, target, request.inputs), threads, request.seed, 1,
+                                 request.out_dir);
     rec.status = rec.metrics.value("status", "ok");
     if (rec.status != "ok" && rec.metrics.contains("failure"))
       rec.message = rec.metrics["failure"].value("message", "");

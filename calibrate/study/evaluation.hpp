@@ -25,6 +25,10 @@ struct EvalRequest {
   static EvalRequest from_json(const nlohmann::json& j);
 };
 
+// The overrides a study run applies to its scene: the model's, then the test's, then every
+// parameter at `inputs` (path -> natural value) as a TOML float.
+std::vector<std::string> scene_overrides(const StudyModel& model, const StudyTarget& test, const nlohmann::json& inputs);
+
 // Runs the request in this process with `threads` OpenMP threads; never throws for a failed or
 // unstable simulation or a scene error: the record says "failed" and why.
 EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,

@@ -1,22 +1,13 @@
 #include "calibrate/study/scene_check.hpp"
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/scenes/scene_file.hpp"
+#include "calibrate/study/evaluation.hpp"
 
 namespace seedcal {
-namespace {
-
-std::string exact(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-}  // namespace
 
 void check_study_scenes(const StudyConfig& s) {
   // The parameters all at their nominal values, all at their lower limits, all at their upper
@@ -34,11 +25,10 @@ void check_study_scenes(const StudyConfig& s) {
     for (int i = 0; i < s.scene_count(); ++i) {
       const StudyTarget& t = s.scene_of(i);
       for (const Setting& at : settings) {
-        std::vector<std::string> sets = model.sets;
-        sets.insert(sets.end(), t.sets.begin(), t.sets.end());
-        for (const StudyParameter& p : s.parameters) sets.push_back(p.path + "=" + exact(p.*at.value));
+        nlohmann::json inputs = nlohmann::json::object();
+        for (const StudyParameter& p : s.parameters) inputs[p.path] = p.*at.value;
         try {
-          check_scene(load_scene_file(t.scene, sets));
+          check_scene(load_scene_file(t.scene, scene_overrides(model, t, inputs)));
         } catch (const InputError& e) {
           const std::string where = s.file + ": " + (i < static_cast<int>(s.targets.size()) ? "target" : "verification test") +
                                     " \"" + t.name + "\" under model \"" + model.name + "\", parameters at their " +
