@@ -3,7 +3,6 @@
 #include <filesystem>
 
 #include "calibrate/cli/errors.hpp"
-#include "calibrate/config/output_config.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "solver/core/errors.hpp"
@@ -35,29 +34,29 @@ SceneFile load_scene_file(const std::string& path, const std::vector<std::string
   return f;
 }
 
-void check_scene(const SceneFile& f) {
-  auto diag = std::make_shared<ConfigDiagnostics>();
-  diag->file = f.path;
-  TomlReader root(f.doc, "", diag);
-  root.integer("repeats", 1, 1000, 1);
-  read_output(root);
-  SceneContext ctx{f.path, "", 1, 0, {}};
-  ctx.check_only = true;
+namespace {
+
+// A scene's runs through run_repeated (which reads `repeats` and [output] as well), a setting the
+// solver refuses reported as bad input naming the file.
+nlohmann::json run_with(const SceneFile& f, const SceneContext& ctx, int repeats) {
   try {
-    (*f.runner)(root, ctx);
+    return run_repeated(*f.runner, f.doc, f.path, ctx, repeats);
   } catch (const SettingError& e) {
     throw InputError(f.path + ": " + e.what());
   }
 }
 
+}  // namespace
+
+void check_scene(const SceneFile& f) {
+  SceneContext ctx{f.path, "", 1, 0, {}};
+  ctx.check_only = true;  // the runner reads its whole config and returns before simulating
+  run_with(f, ctx, 1);
+}
+
 nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir) {
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-  SceneContext ctx{f.path, out_dir, threads, seed, {}};
-  try {
-    return run_repeated(*f.runner, f.doc, f.path, ctx, repeats > 0 ? repeats : f.repeats);
-  } catch (const SettingError& e) {
-    throw InputError(f.path + ": " + e.what());
-  }
+  return run_with(f, SceneContext{f.path, out_dir, threads, seed, {}}, repeats > 0 ? repeats : f.repeats);
 }
 
 nlohmann::json run_scene_file(const std::string& path, const std::vector<std::string>& sets, int threads,
