@@ -2,7 +2,6 @@
 // check `seedcal calibrate` makes before its first run (study/scene_check.hpp: each target and
 // verification test under each clump model, the parameters at their nominal values and limits).
 // A misspelt override, clump path or range in a shipped file fails here, not hours into a study.
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,17 +10,13 @@
 
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/study/scene_check.hpp"
+#include "tests/support/cli.hpp"
 
 namespace seedcal {
 namespace {
 
-std::string source_dir() {
-  const char* s = std::getenv("SEEDCAL_SOURCE_DIR");
-  return s ? s : ".";
-}
-
 TEST(ShippedStudies, EverySceneValidatesUnderEveryModel) {
-  const std::filesystem::path dir = std::filesystem::path(source_dir()) / "data" / "studies";
+  const std::filesystem::path dir = std::filesystem::path(testing::source_dir()) / "data" / "studies";
   int studies = 0, scenes = 0;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".toml") continue;
