@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -20,6 +21,18 @@ std::string read_text(const std::string& path) {
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A file the study reads, named relative to the study file's directory (symbolic links and
+// ".." resolved), so that the same study started as "data/studies/x.toml" and resumed as
+// "/abs/path/data/studies/x.toml", or from another working directory, has one fingerprint.
+std::string study_relative_name(const std::string& path, const std::string& study_file) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path base = fs::weakly_canonical(fs::absolute(fs::path(study_file)).parent_path(), ec);
+  if (ec) return path;
+  const fs::path rel = fs::relative(fs::absolute(fs::path(path)), base, ec);
+  return ec || rel.empty() ? path : rel.generic_string();
 }
 
 // The keys a target and a verification test share: scene (relative to the study file), set,
@@ -192,7 +205,7 @@ std::string study_fingerprint(const StudyConfig& s) {
   std::set<std::string> clumps;
   for (int i = 0; i < s.scene_count(); ++i) {
     const StudyTarget& t = s.scene_of(i);
-    all += "\n--- " + t.scene + "\n" + read_text(t.scene);
+    all += "\n--- " + study_relative_name(t.scene, s.file) + "\n" + read_text(t.scene);
     for (const auto& m : s.models) {
       try {  // the clump file the scene names under each model, when it names one
         toml::value scene = TomlReader::parse_file(t.scene);
@@ -206,7 +219,9 @@ std::string study_fingerprint(const StudyConfig& s) {
       }
     }
   }
-  for (const auto& clump : clumps) all += "\n--- " + clump + "\n" + read_text(clump);
+  std::map<std::string, std::string> named;  // by their study-relative names, in that order
+  for (const auto& clump : clumps) named[study_relative_name(clump, s.file)] = clump;
+  for (const auto& [name, clump] : named) all += "\n--- " + name + "\n" + read_text(clump);
   return fnv1a_hex(all);
 }
 
