@@ -51,12 +51,16 @@ def readings(points):
 
 
 def run_readings(run_dir):
-    with open(f"{run_dir}/metrics.json") as f:
-        rpm = float(json.load(f)["speed_rpm"])
     frames = defaultdict(list)
-    with open(f"{run_dir}/drum_surface.csv") as f:
-        for row in csv.DictReader(f):
-            frames[row["time_s"]].append((float(row["x_m"]), float(row["z_m"])))
+    try:
+        with open(f"{run_dir}/metrics.json") as f:
+            rpm = float(json.load(f)["speed_rpm"])
+        with open(f"{run_dir}/drum_surface.csv") as f:
+            for row in csv.DictReader(f):
+                frames[row["time_s"]].append((float(row["x_m"]), float(row["z_m"])))
+    except (OSError, KeyError, ValueError) as e:
+        sys.exit(f"{run_dir}: not a finished drum run written with --out "
+                 f"(metrics.json with speed_rpm, drum_surface.csv): {e!r}")
     per_frame = [readings(p) for p in frames.values() if len(p) >= 7]
     if not per_frame:
         sys.exit(f"{run_dir}/drum_surface.csv: no frame with 7 surface columns or more")
