@@ -9,10 +9,12 @@ namespace seedcal {
 std::string resolve_data_path(const std::string& path, const std::string& config_path) {
   namespace fs = std::filesystem;
   const fs::path p(path);
-  if (p.is_absolute() || fs::exists(p)) return path;
+  if (p.is_absolute()) return path;
+  // The config's own directory first: a file that names "clump.txt" means the one beside it, even
+  // when the working directory holds another file of that name.
   const fs::path beside = fs::path(config_path).parent_path() / p;
   if (fs::exists(beside)) return beside.string();
-  return path;
+  return path;  // relative to the working directory (a path given on the command line)
 }
 
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // Where scenes get a clump's spheres from: a clump file (TOML written by `seedcal clump build`, or
 // a plain "x y z r" text file such as data/bench/clump9.txt), with paths relative to the config
-// that names them or to the working directory.
+// that names them or, failing that, to the working directory.
 #include <string>
 #include <vector>
 
@@ -10,8 +10,8 @@
 
 namespace seedcal {
 
-// A path as written in a config: absolute, relative to the working directory, or relative to the
-// config file's directory (tried in that order).
+// A path as written in a config: absolute, relative to the config file's directory, or relative to
+// the working directory (tried in that order; the last for a path given on the command line).
 std::string resolve_data_path(const std::string& path, const std::string& config_path);
 
 // Spheres of a clump file in its own frame; problems are reported on `reader` under `key`.

@@ -1,4 +1,6 @@
 // Shapes, fills, clump files, varieties, moisture fits and the size distribution.
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -9,6 +11,7 @@
 
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/clumps/clump_build.hpp"
+#include "calibrate/clumps/clump_source.hpp"
 #include "calibrate/clumps/fill.hpp"
 #include "calibrate/clumps/moisture.hpp"
 #include "calibrate/clumps/size_distribution.hpp"
@@ -213,6 +216,33 @@ TEST(SizeDistribution, FromTable5Width) {
   EXPECT_NEAR(d.sd, 1.1916 / 9.1098, 1e-12);
   EXPECT_NEAR(d.lo, 1.0 - 2 * d.sd, 1e-12);
   EXPECT_NEAR(d.hi, 1.0 + 2 * d.sd, 1e-12);
+}
+
+}  // namespace
+}  // namespace seedcal
+
+namespace seedcal {
+namespace {
+
+// A relative path in a config means the file beside the config, even when the working directory
+// holds a file of the same name; a path that exists only from the working directory (given on
+// the command line) still resolves there.
+TEST(DataPath, BesideTheConfigBeforeTheWorkingDirectory) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / ("seedcal-data-path-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root / "scenes");
+  std::ofstream(root / "scenes" / "clump.txt") << "0 0 0 0.001\n";
+  std::ofstream(root / "clump.txt") << "0 0 0 0.002\n";
+  std::ofstream(root / "only-here.txt") << "0 0 0 0.003\n";
+  const fs::path saved = fs::current_path();
+  fs::current_path(root);
+  const std::string config = (root / "scenes" / "scene.toml").string();
+  EXPECT_EQ(resolve_data_path("clump.txt", config), (root / "scenes" / "clump.txt").string());
+  EXPECT_EQ(resolve_data_path("only-here.txt", config), "only-here.txt");
+  EXPECT_EQ(resolve_data_path((root / "clump.txt").string(), config), (root / "clump.txt").string());
+  fs::current_path(saved);
+  fs::remove_all(root);
 }
 
 }  // namespace
