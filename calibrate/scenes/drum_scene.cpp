@@ -32,8 +32,11 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   j["dynamic_angle_of_repose_deg"] = r.dynamic_angle_of_repose_deg;
   j["dynamic_angle_frames_sd_deg"] = r.angle_sd_deg;
   nlohmann::json frames = nlohmann::json::array();
-  for (const DrumFrame& f : r.frames) frames.push_back({{"time_s", f.time_s}, {"angle_deg", f.angle_deg}, {"r2", f.fit.r2}});
+  for (const DrumFrame& f : r.frames)
+    frames.push_back({{"time_s", f.time_s}, {"angle_deg", f.angle_deg}, {"r2", f.fit.r2},
+                      {"wall_layer_speed_ratio", f.wall_layer_speed_ratio}});
   j["frames"] = frames;
+  j["wall_layer_speed_ratio"] = r.wall_layer_speed_ratio;
   j["speed_rpm"] = spec.speed_rpm;
   j["froude_number"] = r.froude_number;
   j["fill_height_m"] = r.fill_height_m;

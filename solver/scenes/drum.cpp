@@ -22,6 +22,23 @@ double drum_fill_height(double radius_m, double filling_rate) {
   return radius_m * (1.0 - std::cos(0.5 * (lo + hi)));
 }
 
+double wall_layer_speed_ratio(const BodyState& bodies, double radius_m, double layer_m,
+                              double omega_rad_s) {
+  // The drum turns about +y through the origin: the shell's velocity at (x, z) is w (z, 0, -x),
+  // so a body's speed along the turn is (z v_x - x v_z) / rho with rho = sqrt(x^2 + z^2).
+  double moved = 0.0, wall = 0.0;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const Vec3& p = bodies.position_m[b];
+    const double rho = std::hypot(p.x(), p.z());
+    if (rho < radius_m - layer_m || rho == 0.0) continue;
+    const Vec3& v = bodies.velocity_m_s[b];
+    const double m = bodies.mass_kg[b];
+    moved += m * (p.z() * v.x() - p.x() * v.z()) / rho;
+    wall += m * omega_rad_s * rho;
+  }
+  return wall > 0.0 ? moved / wall : 0.0;
+}
+
 DrumResult run_drum(const DrumSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
   const double cpu0 = process_cpu_seconds();
@@ -77,7 +94,7 @@ DrumResult run_drum(const DrumSpec& spec) {
 
   double d = 0.0;
   for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
-  double sum = 0.0, sum2 = 0.0;
+  double sum = 0.0, sum2 = 0.0, ratio_sum = 0.0;
   res.run.stop_reason = "all frames taken";
   for (double tf : spec.frame_times_s) {
     if (!run_for(sim, std::max(0.0, t0 + tf - sim.time_s()))) {
@@ -101,6 +118,8 @@ DrumResult run_drum(const DrumSpec& spec) {
         zs.push_back(z);
       }
     DrumFrame fr{tf, 0.0, prof, fit_line(xs, zs)};
+    fr.wall_layer_speed_ratio = wall_layer_speed_ratio(sim.bodies(), R, d, w);
+    ratio_sum += fr.wall_layer_speed_ratio;
     if (fr.fit.ok) {
       fr.angle_deg = std::atan(std::abs(fr.fit.slope)) * 180.0 / std::numbers::pi;
       sum += fr.angle_deg;
@@ -111,6 +130,7 @@ DrumResult run_drum(const DrumSpec& spec) {
   const double n = static_cast<double>(res.frames.size());
   if (n > 0) {
     res.dynamic_angle_of_repose_deg = sum / n;
+    res.wall_layer_speed_ratio = ratio_sum / n;
     res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.dynamic_angle_of_repose_deg * res.dynamic_angle_of_repose_deg) / (n - 1))) : 0.0;
   }
   res.run.failure = sim.failure();

@@ -38,12 +38,19 @@ struct DrumFrame {
   double time_s, angle_deg;
   std::vector<std::pair<double, double>> surface;  // (x, z) in the drum's cross-section
   LineFit fit;
+  // Mass-weighted mean speed, along the drum's turn, of the seeds whose centre lies within one
+  // seed length of the drum's shell, over the shell's speed at their radius: about 1 when the
+  // wall carries the bed up (rolling, cascading), about 0 when the shell slides under a bed that
+  // stays put (the slipping regime, where the surface angle is set by the wall friction and not
+  // by the seeds' avalanches; Mellmann 2001, Powder Technol. 118, 251-270).
+  double wall_layer_speed_ratio = 0.0;
 };
 
 struct DrumResult {
   RunReport run;
   double dynamic_angle_of_repose_deg = 0.0;
   double angle_sd_deg = 0.0;
+  double wall_layer_speed_ratio = 0.0;  // mean over the frames (DrumFrame)
   double froude_number = 0.0;
   double fill_height_m = 0.0;
   std::size_t seeds = 0;
@@ -53,6 +60,12 @@ struct DrumResult {
 
 // Bed height for a filling rate: solves f = (eps - sin eps cos eps) / pi for eps, h = Rc (1 - cos eps).
 double drum_fill_height(double radius_m, double filling_rate);
+
+// DrumFrame::wall_layer_speed_ratio of a drum of inner radius `radius_m` turning at `omega_rad_s`
+// about +y through the origin, over the bodies whose centre lies within `layer_m` of the shell
+// (0 when none does or the drum stands still).
+double wall_layer_speed_ratio(const BodyState& bodies, double radius_m, double layer_m,
+                              double omega_rad_s);
 
 DrumResult run_drum(const DrumSpec& spec);
 
