@@ -61,6 +61,10 @@ struct DrumResult {
 // Bed height for a filling rate: solves f = (eps - sin eps cos eps) / pi for eps, h = Rc (1 - cos eps).
 double drum_fill_height(double radius_m, double filling_rate);
 
+// A frame whose wall layer moves at less than this fraction of the shell's speed (either way) is
+// counted as slipping.
+inline constexpr double kSlippingSpeedRatio = 0.1;
+
 // DrumFrame::wall_layer_speed_ratio of a drum of inner radius `radius_m` turning at `omega_rad_s`
 // about +y through the origin, over the bodies whose centre lies within `layer_m` of the shell
 // (0 when none does or the drum stands still).
