@@ -149,7 +149,8 @@ StudyData fixture(const fs::path& dir) {
       {"test": "piling", "metric": "angle_of_repose_deg", "label": "piling", "mean": 30.1, "sd": 1.2, "n": 3, "samples": [29, 30, 31.3],
        "experimental_mean": 31.2, "experimental_sd": 0.9, "rel_error": -0.035, "within_sd": false, "cpu_seconds": 40.0},
       {"test": "drum", "label": "drum 5 rpm", "rpm": 5, "metric": "dynamic_angle_deg", "mean": 35.0, "sd": 0.8, "n": 2,
-       "experimental_mean": null, "experimental_sd": null, "rel_error": null, "within_sd": null, "cpu_seconds": 80.0},
+       "experimental_mean": null, "experimental_sd": null, "rel_error": null, "within_sd": null, "cpu_seconds": 80.0,
+       "drum_frames": 6, "drum_slipping_frames": 4},
       {"test": "shear", "label": "shear", "metric": "shear_strength_pa", "mean": 120000.0, "sd": 9000.0, "n": 2,
        "experimental_mean": 118230.0, "experimental_sd": null, "rel_error": 0.015, "within_sd": null, "cpu_seconds": 5.0}]},
     "model_selection": {"rule": "cheapest model within 2 % of the lowest mean |error|", "chosen": "manual-9", "models": [
@@ -185,6 +186,11 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
   // An experiment with a mean and no sd: the error is given, the within-sd test is not applicable.
   EXPECT_NE(html.find("n/a (no experimental sd)"), std::string::npos);
   EXPECT_NE(html.find("drum 5 rpm"), std::string::npos);
+  // A drum whose bed slipped on the shell says so under the table, in both formats; once.
+  const std::string slip = "shell slid under a bed at rest in 4 of 6 frames";
+  EXPECT_NE(html.find(slip), std::string::npos);
+  EXPECT_NE(md.find(slip), std::string::npos);
+  EXPECT_EQ(md.find(slip, md.find(slip) + 1), std::string::npos);
   EXPECT_NE(html.find("Needs a newer study store"), std::string::npos);
   EXPECT_NE(md.find("(scenes/piling/side_view.svg)"), std::string::npos) << md;
   for (const char* f : {"verification.csv", "model_selection.csv", "summary.csv", "calibrated_values.csv", "confirmed.csv", "fit_statistics.csv"})
