@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,13 +18,17 @@
 namespace seedcal {
 
 using RecordCallback = std::function<void(std::size_t index, EvaluationRecord record)>;
+// Asked just before request `index` is handed to a simulation slot: a record to report instead of
+// running it (a run the study no longer needs), or nothing to run it.
+using DispatchCheck = std::function<std::optional<EvaluationRecord>(std::size_t index)>;
 
 class Executor {
  public:
   virtual ~Executor() = default;
   virtual int slots() const = 0;  // simulations that run at once
   virtual std::string describe() const = 0;
-  virtual void run(const std::vector<EvalRequest>& requests, const RecordCallback& done) = 0;
+  virtual void run(const std::vector<EvalRequest>& requests, const RecordCallback& done,
+                   const DispatchCheck& check = {}) = 0;
 };
 
 struct WorkerCommand {

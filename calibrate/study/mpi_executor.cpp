@@ -48,18 +48,35 @@ class MpiExecutor final : public Executor {
   }
   int slots() const override { return MpiSession::size() - 1; }
   std::string describe() const override { return std::to_string(slots()) + " MPI worker rank(s)"; }
-  void run(const std::vector<EvalRequest>& requests, const RecordCallback& done) override {
+  void run(const std::vector<EvalRequest>& requests, const RecordCallback& done, const DispatchCheck& check) override {
     std::deque<std::size_t> queue;
     for (std::size_t i = 0; i < requests.size(); ++i) queue.push_back(i);
     std::vector<long> busy(static_cast<std::size_t>(MpiSession::size()), -1);
     std::size_t finished = 0;
+    // The queue's leading requests that `check` answers instead of a simulation.
+    const auto skip_unneeded = [&] {
+      while (check && !queue.empty()) {
+        std::optional<EvaluationRecord> instead = check(queue.front());
+        if (!instead) return;
+        const std::size_t i = queue.front();
+        queue.pop_front();
+        done(i, std::move(*instead));
+        ++finished;
+      }
+    };
     while (finished < requests.size()) {
-      for (int r = 1; r < MpiSession::size() && !queue.empty(); ++r) {
+      for (int r = 1; r < MpiSession::size(); ++r) {
         if (busy[static_cast<std::size_t>(r)] >= 0) continue;
+        skip_unneeded();
+        if (queue.empty()) break;
         busy[static_cast<std::size_t>(r)] = static_cast<long>(queue.front());
         send(requests[queue.front()].to_json().dump(), r, kTagRequest);
         queue.pop_front();
       }
+      skip_unneeded();
+      bool running = false;
+      for (const long b : busy) running = running || b >= 0;
+      if (!running) continue;  // everything left was skipped, or is queued for a free rank
       // Poll politely: a blocking receive spins a core that a worker rank on this node could use.
       for (int flag = 0; !flag;) {
         MPI_Iprobe(MPI_ANY_SOURCE, kTagRecord, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);

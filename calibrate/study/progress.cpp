@@ -60,6 +60,14 @@ void Progress::run_done(bool reused, double wall_seconds, const std::string& wha
   draw();
 }
 
+void Progress::run_skipped(const std::string& what) {
+  ++done_;
+  ++total_done_;
+  log_ << utc_now() << " " << stage_ << " " << done_ << "/" << planned_ << " (skipped) " << what << "\n";
+  log_.flush();
+  draw();
+}
+
 void Progress::best_error(double relative_error) {
   if (best_ < 0 || std::fabs(relative_error) < best_) best_ = std::fabs(relative_error);
 }

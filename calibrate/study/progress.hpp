@@ -17,6 +17,8 @@ class Progress {
   ~Progress();
   void stage(const std::string& name, int planned);  // a new stage with `planned` DEM runs
   void run_done(bool reused, double wall_seconds, const std::string& what);
+  // A planned run that the study skipped (not run; not in the time estimate).
+  void run_skipped(const std::string& what);
   void best_error(double relative_error);             // smallest |relative error| seen so far
   void log(const std::string& message);               // a line in the log (and on the terminal)
   double elapsed_seconds() const;

@@ -35,7 +35,8 @@ EvalRequest StudyEvaluator::plan_one(const std::string& stage, const Eigen::Vect
 }
 
 std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>& requests,
-                                                  const std::function<void(std::size_t, const EvaluationRecord&)>& on_record) {
+                                                  const std::function<void(std::size_t, const EvaluationRecord&)>& on_record,
+                                                  const std::function<std::string(std::size_t)>& unneeded) {
   std::vector<EvaluationRecord> out(requests.size());
   std::vector<EvalRequest> todo;
   std::vector<std::size_t> where;
@@ -59,7 +60,30 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     count_cpu(r);
     if (on_record) on_record(i, out[i]);
   }
+  DispatchCheck check;
+  if (unneeded)
+    check = [&](std::size_t k) -> std::optional<EvaluationRecord> {
+      const std::string why = unneeded(where[k]);
+      if (why.empty()) return std::nullopt;
+      const EvalRequest& req = todo[k];
+      EvaluationRecord rec;
+      rec.stage = req.stage;
+      rec.inputs = req.inputs;
+      rec.seed = req.seed;
+      rec.metrics = {{"study_target", req.target}, {"study_target_name", study_.scene_of(req.target).name}};
+      if (req.model != 0) rec.metrics["study_model"] = study_.models[static_cast<std::size_t>(req.model)].name;
+      rec.status = "skipped";
+      rec.message = why;
+      return rec;
+    };
   executor_.run(todo, [&](std::size_t k, EvaluationRecord rec) {
+    if (rec.status == "skipped") {
+      progress_.run_skipped("seed " + std::to_string(rec.seed) + " target " +
+                            rec.metrics.value("study_target_name", "?") + ": " + rec.message);
+      out[where[k]] = std::move(rec);
+      if (on_record) on_record(where[k], out[where[k]]);
+      return;
+    }
     rec.id = 0;
     store_.append(rec);  // on disk before anything else happens
     rec = store_.evaluations().back();
@@ -73,8 +97,9 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     refuse_missing_metric(rec);
     out[where[k]] = std::move(rec);
     if (on_record) on_record(where[k], out[where[k]]);
-  });
+  }, check);
   for (const auto& r : out) {
+    if (r.status == "skipped") continue;  // not a DEM run
     history_.push_back(r);
     ++used_;
     const int t = record_target(r);

@@ -30,8 +30,13 @@ class StudyEvaluator {
                        const std::string& out_dir = "");
   // Runs the requests (store first), returns the records in request order. `on_record`, when
   // set, is called with each request's index and record as it arrives (stored ones first).
+  // `unneeded`, when set, is asked just before a request not in the store would start: a
+  // non-empty reason skips it (a run whose result can no longer change the study's outcome). A
+  // skipped request gets a record with status "skipped" and the reason; it is not a DEM run, so
+  // it is neither stored nor counted (a resumed study skips it again for the same reason).
   std::vector<EvaluationRecord> run(const std::vector<EvalRequest>& requests,
-                                    const std::function<void(std::size_t, const EvaluationRecord&)>& on_record = {});
+                                    const std::function<void(std::size_t, const EvaluationRecord&)>& on_record = {},
+                                    const std::function<std::string(std::size_t)>& unneeded = {});
 
   // Tells the progress display a new stage (or round) begins with `planned` runs.
   void announce(const std::string& stage, int planned) { progress_.stage(stage, planned); }

@@ -44,9 +44,15 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
   std::vector<double> v;
   std::vector<std::uint64_t> seeds;
   double cpu = 0.0;
-  nlohmann::json failures = nlohmann::json::array();
+  int ran = 0;
+  nlohmann::json failures = nlohmann::json::array(), skipped = nlohmann::json::array();
   for (const auto* r : runs) {
+    if (r->status == "skipped") {  // not run (StudyEvaluator::run): no result, no cost
+      skipped.push_back({{"seed", r->seed}, {"reason", r->message}});
+      continue;
+    }
     cpu += r->cpu_seconds;
+    ++ran;
     const double x = record_metric(s, *r);
     if (std::isfinite(x)) {
       v.push_back(x);
@@ -55,10 +61,11 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
       failures.push_back({{"seed", r->seed}, {"status", r->status}, {"message", r->message}});
     }
   }
-  *cpu_per_run = runs.empty() ? 0.0 : cpu / static_cast<double>(runs.size());
+  *cpu_per_run = ran == 0 ? 0.0 : cpu / static_cast<double>(ran);
   nlohmann::json j = {{"test", t.name}, {"label", t.name}, {"metric", t.metric}, {"role", is_target ? "target" : "verification"},
                       {"n", v.size()}, {"samples", v}, {"seeds", seeds}, {"cpu_seconds", *cpu_per_run}};
   if (!failures.empty()) j["failures"] = failures;
+  if (!skipped.empty()) j["skipped"] = skipped;
   // A drum whose shell slid under a bed at rest (scenes/drum.hpp): the frames' angles are held by
   // the wall friction, which the report says beside the result.
   int drum_frames = 0, slipping = 0;
@@ -226,11 +233,35 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
     }
   }
   std::vector<EvaluationRecord> arrived(requests.size());
+  std::vector<char> in(requests.size(), 0);
   std::vector<int> missing(static_cast<std::size_t>(models), 0);
   for (const int m : model_of) ++missing[static_cast<std::size_t>(m)];
+  // A model whose every run of a test with an experimental value failed has no error, so the rule
+  // cannot choose it (select_models): its runs not yet started are skipped, not run. At paper
+  // fidelity that can be hours of simulations whose results could not change the choice.
+  const auto unneeded = [&](std::size_t i) -> std::string {
+    const int m = model_of[i];
+    for (int t = 0; t < scenes; ++t) {
+      if (!s.scene_of(t).has_value) continue;
+      const std::size_t f = first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)];
+      std::string why;
+      bool failed_all = true;
+      for (int rep = 0; rep < reps_of(t) && failed_all; ++rep) {
+        const std::size_t k = f + static_cast<std::size_t>(rep);
+        const bool failed = in[k] && arrived[k].status != "skipped" && !std::isfinite(record_metric(s, arrived[k]));
+        failed_all = failed;
+        if (failed && why.empty()) why = arrived[k].status + (arrived[k].message.empty() ? "" : ": " + arrived[k].message);
+      }
+      if (failed_all)
+        return "model \"" + s.models[static_cast<std::size_t>(m)].name + "\" cannot be chosen: every run of \"" +
+               s.scene_of(t).name + "\" failed (the first: " + why + ")";
+    }
+    return "";
+  };
   int complete = 0;  // models 0 .. complete-1 have every record
   const auto records = ev.run(requests, [&](std::size_t i, const EvaluationRecord& r) {
     arrived[i] = r;
+    in[i] = 1;
     --missing[static_cast<std::size_t>(model_of[i])];
     const int before = complete;
     while (complete < models && missing[static_cast<std::size_t>(complete)] == 0) ++complete;
@@ -238,7 +269,7 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
       select_models(s, st, store, arrived, first, complete, reps_of);
       if (on_model_done) on_model_done(complete);
     }
-  });
+  }, unneeded);
   return select_models(s, st, store, records, first, models, reps_of);
 }
 

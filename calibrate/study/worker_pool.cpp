@@ -54,13 +54,15 @@ class WorkerPool final : public Executor {
     return std::to_string(workers_.size()) + " worker process" + (workers_.size() == 1 ? "" : "es");
   }
 
-  void run(const std::vector<EvalRequest>& requests, const RecordCallback& done) override {
+  void run(const std::vector<EvalRequest>& requests, const RecordCallback& done, const DispatchCheck& check) override {
     std::deque<std::size_t> queue;
     for (std::size_t i = 0; i < requests.size(); ++i) queue.push_back(i);
     std::size_t finished = 0;
     while (finished < requests.size()) {
       for (auto& w : workers_) {
-        if (w.busy_with >= 0 || queue.empty()) continue;
+        if (w.busy_with >= 0) continue;
+        skip_unneeded(queue, check, done, finished);
+        if (queue.empty()) continue;
         if (w.pid < 0) start(w);
         const std::size_t i = queue.front();
         queue.pop_front();
@@ -71,6 +73,7 @@ class WorkerPool final : public Executor {
           ++finished;
         }
       }
+      skip_unneeded(queue, check, done, finished);
       std::vector<pollfd> fds;
       std::vector<Worker*> who;
       for (auto& w : workers_)
@@ -114,6 +117,19 @@ class WorkerPool final : public Executor {
   }
 
  private:
+  // Reports the queue's leading requests that `check` answers instead of a simulation.
+  static void skip_unneeded(std::deque<std::size_t>& queue, const DispatchCheck& check, const RecordCallback& done,
+                            std::size_t& finished) {
+    while (check && !queue.empty()) {
+      std::optional<EvaluationRecord> instead = check(queue.front());
+      if (!instead) return;
+      const std::size_t i = queue.front();
+      queue.pop_front();
+      done(i, std::move(*instead));
+      ++finished;
+    }
+  }
+
   EvaluationRecord failed_record(const EvalRequest& r, const std::string& why) const {
     EvaluationRecord rec;
     rec.stage = r.stage;

@@ -175,10 +175,9 @@ TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
 // (here two time steps: a model is any set of overrides applied to every scene) runs the target
 // and two verification tests (one with an experiment, one simulation only). The fine step costs
 // ten times the CPU for no accuracy the margin can see, so the coarse one is chosen.
-TEST(CalibrateCli, VerifiesAndSelectsModels) {
-  const std::string dir = scratch_dir("calibrate-verify");
-  const double e0 = 3.3e10;
-  const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
+// The study of VerifiesAndSelectsModels: E from the contact time of the impact scene `m` (whose
+// peak force is the verification test's experiment), two models, and `extra` appended.
+std::string verify_study_text(const nlohmann::json& m, const std::string& extra = "") {
   const double force = m["max_normal_force_n"].get<double>();
   char text[4096];
   std::snprintf(text, sizeof text, R"(name = "impact-verify"
@@ -236,6 +235,14 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
 )",
                 source_dir().c_str(), kScene, m["contact_duration_s"].get<double>(), source_dir().c_str(), kScene, force,
                 0.01 * force, source_dir().c_str(), kScene);
+  return text + extra;
+}
+
+TEST(CalibrateCli, VerifiesAndSelectsModels) {
+  const std::string dir = scratch_dir("calibrate-verify");
+  const double e0 = 3.3e10;
+  const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
+  const std::string text = verify_study_text(m);
   const auto r = calibrate_study(dir, text);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
@@ -274,6 +281,49 @@ set = ["duration_s=1.0e-4", "dt_s=2.0e-9"]
   EXPECT_LT(log.find("verify: 1 of 2 models verified"), log.find("verify 6/"));  // before model 2's first run ends
   std::filesystem::remove_all(dir);
 }
+// A model whose every run of a test with an experiment fails (here the target, at a time step
+// above the stable limit) has no error and cannot be chosen: its runs not yet started are
+// skipped, not run, and a resumed study skips them again.
+TEST(CalibrateCli, ModelThatCannotBeChosenIsNotRunFurther) {
+  const std::string dir = scratch_dir("calibrate-unchoosable");
+  const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
+  const auto r = calibrate_study(dir, verify_study_text(m, "\n[[model]]\nname = \"unstable\"\nset = [\"duration_s=1.0e-4\", \"dt_s=1.0e-5\"]\n"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  const auto& sel = s["model_selection"];
+  ASSERT_EQ(sel["models"].size(), 3u) << sel.dump(1);
+  EXPECT_EQ(sel["chosen"], "dt-2e-8") << sel.dump(1);
+  const auto& bad = sel["models"][2];
+  EXPECT_TRUE(bad["mean_abs_rel_error"].is_null()) << bad.dump(1);
+  EXPECT_FALSE(bad["pareto"].get<bool>());
+  // Its two target runs failed; of its three other runs, those not started before the second
+  // failure came in (with two slots, at most one was) were skipped with the reason.
+  const auto& tests = bad["tests"];
+  ASSERT_EQ(tests.size(), 3u);
+  EXPECT_EQ(tests[0]["n"], 0);
+  EXPECT_EQ(tests[0]["failures"].size(), 2u) << tests[0].dump(1);
+  int skipped = 0;
+  for (const auto& t : tests)
+    for (const auto& k : t.value("skipped", nlohmann::json::array())) {
+      ++skipped;
+      EXPECT_NE(k["reason"].get<std::string>().find("model \"unstable\" cannot be chosen: every run of"), std::string::npos) << k.dump();
+    }
+  EXPECT_GE(skipped, 2);
+  EXPECT_LE(skipped, 3);
+  // Skipped runs are not DEM runs: not counted, not stored, not in the CPU time.
+  const int made = s["evaluations_total"].get<int>() - s["evaluations"].get<int>();
+  EXPECT_EQ(made, 3 * (2 + 2 + 1) - skipped);
+  const std::string log = read_text(dir + "/out/calibrate.log");
+  EXPECT_NE(log.find("(skipped) seed"), std::string::npos) << log;
+  // Resumed, the study answers every run from the store and skips the same runs again.
+  const auto again = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --jobs 2 --threads 1");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  const auto s2 = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_EQ(s2["model_selection"]["chosen"], "dt-2e-8");
+  EXPECT_EQ(s2["evaluations_total"], s["evaluations_total"]);
+  std::filesystem::remove_all(dir);
+}
+
 // A metric the scene does not report is a study file error: the study stops at the first run
 // that finishes (exit 2, the scene's metric keys and the closest one named), instead of failing
 // every run of the screening and the surrogate design; a resume with the same file says it again.
