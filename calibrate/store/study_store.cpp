@@ -165,6 +165,11 @@ void StudyStore::append(EvaluationRecord record) {
   write();
 }
 
+void StudyStore::set_config_hash(const std::string& hash) {
+  header_.config_hash = hash;
+  write();
+}
+
 void StudyStore::set_stage(const std::string& name, const nlohmann::json& content) {
   stages_[name] = content;
   write();

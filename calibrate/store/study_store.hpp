@@ -50,6 +50,9 @@ class StudyStore {
 
   void append(EvaluationRecord record);  // assigns the id if 0; written before it returns
   void set_stage(const std::string& name, const nlohmann::json& content);
+  // Records the study's fingerprint under the current rule (a store from an earlier build that
+  // computed the same study's fingerprint another way); written before it returns.
+  void set_config_hash(const std::string& hash);
 
   const StudyHeader& header() const { return header_; }
   const std::vector<EvaluationRecord>& evaluations() const { return evaluations_; }

@@ -21,6 +21,9 @@ StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std:
     if (!o.resume)
       throw InputError(path + ": a study is already stored here; continue it with --resume, or choose another --out");
     StudyStore store = StudyStore::open(path);
+    // A store from a build that named the study's files as the command line spelt them.
+    if (store.header().config_hash != hash && store.header().config_hash == study_fingerprint_as_spelt(s))
+      store.set_config_hash(hash);
     if (store.header().config_hash != hash)
       throw InputError(path + ": this study directory was made from a different study (fingerprint " +
                        store.header().config_hash + ", now " + hash + "): the study file " + o.study_file +

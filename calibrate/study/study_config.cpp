@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -200,12 +201,15 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
   return s;
 }
 
-std::string study_fingerprint(const StudyConfig& s) {
+namespace {
+
+// The fingerprint with each scene and clump file labelled by `name_of` its path.
+std::string fingerprint_with(const StudyConfig& s, const std::function<std::string(const std::string&)>& name_of) {
   std::string all = s.text;
   std::set<std::string> clumps;
   for (int i = 0; i < s.scene_count(); ++i) {
     const StudyTarget& t = s.scene_of(i);
-    all += "\n--- " + study_relative_name(t.scene, s.file) + "\n" + read_text(t.scene);
+    all += "\n--- " + name_of(t.scene) + "\n" + read_text(t.scene);
     for (const auto& m : s.models) {
       try {  // the clump file the scene names under each model, when it names one
         toml::value scene = TomlReader::parse_file(t.scene);
@@ -220,9 +224,19 @@ std::string study_fingerprint(const StudyConfig& s) {
     }
   }
   std::map<std::string, std::string> named;  // by their study-relative names, in that order
-  for (const auto& clump : clumps) named[study_relative_name(clump, s.file)] = clump;
+  for (const auto& clump : clumps) named[name_of(clump)] = clump;
   for (const auto& [name, clump] : named) all += "\n--- " + name + "\n" + read_text(clump);
   return fnv1a_hex(all);
+}
+
+}  // namespace
+
+std::string study_fingerprint(const StudyConfig& s) {
+  return fingerprint_with(s, [&](const std::string& path) { return study_relative_name(path, s.file); });
+}
+
+std::string study_fingerprint_as_spelt(const StudyConfig& s) {
+  return fingerprint_with(s, [](const std::string& path) { return path; });
 }
 
 }  // namespace seedcal

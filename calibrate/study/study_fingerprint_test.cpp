@@ -53,6 +53,18 @@ TEST(StudyFingerprint, DoesNotDependOnHowTheStudyPathIsSpelt) {
   fs::remove(link);
 }
 
+// The rule of builds up to 36a29a0 (kept to accept their stores on resume): the files named as
+// the paths were spelt, so a relative and an absolute spelling differ there and agree here.
+TEST(StudyFingerprint, EarlierBuildsRuleDependsOnTheSpelling) {
+  const fs::path root = fs::weakly_canonical(testing::source_dir());
+  const StudyConfig absolute = read_study((root / kStudy).string());
+  InDirectory here(root);
+  const StudyConfig relative = read_study(kStudy.string());
+  EXPECT_NE(study_fingerprint_as_spelt(relative), study_fingerprint_as_spelt(absolute));
+  EXPECT_EQ(study_fingerprint(relative), study_fingerprint(absolute));
+  EXPECT_NE(study_fingerprint_as_spelt(relative), study_fingerprint(relative));
+}
+
 TEST(StudyFingerprint, ChangesWithAClumpFileTheStudyReads) {
   const fs::path root = fs::weakly_canonical(testing::source_dir());
   const fs::path dir = fs::temp_directory_path() / ("seedcal-fingerprint-copy-" + std::to_string(::getpid()));
