@@ -152,7 +152,11 @@ StudyData fixture(const fs::path& dir) {
        "experimental_mean": null, "experimental_sd": null, "rel_error": null, "within_sd": null, "cpu_seconds": 80.0,
        "drum_frames": 6, "drum_slipping_frames": 4},
       {"test": "shear", "label": "shear", "metric": "shear_strength_pa", "mean": 120000.0, "sd": 9000.0, "n": 2,
-       "experimental_mean": 118230.0, "experimental_sd": null, "rel_error": 0.015, "within_sd": null, "cpu_seconds": 5.0}]},
+       "experimental_mean": 118230.0, "experimental_sd": null, "rel_error": 0.015, "within_sd": null, "cpu_seconds": 5.0},
+      {"test": "heap-b", "label": "heap-b", "metric": "angle_of_repose_deg", "mean": null, "sd": null, "n": 0,
+       "experimental_mean": 31.76, "experimental_sd": 1.16, "rel_error": null, "within_sd": null, "cpu_seconds": 3.0,
+       "failures": [{"seed": 9, "status": "deep_overlap", "message": "overlap reached 0.5 of the radius"}],
+       "skipped": [{"seed": 10, "reason": "model cannot be chosen"}, {"seed": 11, "reason": "model cannot be chosen"}]}]},
     "model_selection": {"rule": "cheapest model within 2 % of the lowest mean |error|", "chosen": "manual-9", "models": [
       {"model": "manual-9", "spheres": 9, "mean_abs_rel_error": 0.05, "cpu_seconds": 300.0, "score": 1.0, "pareto": true, "calibrated": {"seed_seed.static_friction": 0.5}},
       {"model": "auto-3", "spheres": 3, "mean_abs_rel_error": 0.12, "cpu_seconds": 90.0, "score": 0.7, "pareto": true, "calibrated": {"seed_seed.static_friction": 0.6}},
@@ -191,6 +195,11 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
   EXPECT_NE(html.find(slip), std::string::npos);
   EXPECT_NE(md.find(slip), std::string::npos);
   EXPECT_EQ(md.find(slip, md.find(slip) + 1), std::string::npos);
+  // A test without a result says so, and why: its failed and skipped runs.
+  EXPECT_NE(md.find("n/a (no result)"), std::string::npos) << md;
+  EXPECT_NE(html.find("heap-b: 1 run(s) failed (the first: deep_overlap: overlap reached 0.5 of the radius); 2 run(s) "
+                      "skipped (model cannot be chosen)."),
+            std::string::npos);
   EXPECT_NE(html.find("Needs a newer study store"), std::string::npos);
   EXPECT_NE(md.find("(scenes/piling/side_view.svg)"), std::string::npos) << md;
   for (const char* f : {"verification.csv", "model_selection.csv", "summary.csv", "calibrated_values.csv", "confirmed.csv", "fit_statistics.csv"})

@@ -250,11 +250,12 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
         const std::size_t k = f + static_cast<std::size_t>(rep);
         const bool failed = in[k] && arrived[k].status != "skipped" && !std::isfinite(record_metric(s, arrived[k]));
         failed_all = failed;
-        if (failed && why.empty()) why = arrived[k].status + (arrived[k].message.empty() ? "" : ": " + arrived[k].message);
+        if (failed && why.find(arrived[k].status) == std::string::npos)
+          why += (why.empty() ? "" : ", ") + arrived[k].status;
       }
       if (failed_all)
         return "model \"" + s.models[static_cast<std::size_t>(m)].name + "\" cannot be chosen: every run of \"" +
-               s.scene_of(t).name + "\" failed (the first: " + why + ")";
+               s.scene_of(t).name + "\" failed (" + why + "; the test's failures say why)";
     }
     return "";
   };

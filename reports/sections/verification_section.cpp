@@ -20,9 +20,26 @@ std::vector<std::string> test_row(const nlohmann::json& x) {
           sim_only ? "simulation only" : format_value(x.value("experimental_sd", nlohmann::json())),
           sim_only ? "simulation only" : format_percent(x.value("rel_error", nlohmann::json())),
           sim_only ? "simulation only"
-          : x.value("within_sd", nlohmann::json()).is_null() ? "n/a (no experimental sd)"
-                                                             : format_value(x["within_sd"]),
+          : !x.value("within_sd", nlohmann::json()).is_null() ? format_value(x["within_sd"])
+          : x.value("mean", nlohmann::json()).is_null()       ? "n/a (no result)"
+                                                              : "n/a (no experimental sd)",
           format_value(x.value("cpu_seconds", nlohmann::json()))};
+}
+
+// The note for a test some of whose runs failed or were skipped, or "": how many, and the first
+// reason (a test with no result says why).
+std::string runs_note(const nlohmann::json& x, const std::string& model) {
+  const auto& failed = member(x, "failures");
+  const auto& skipped = member(x, "skipped");
+  if (failed.empty() && skipped.empty()) return "";
+  std::string n = x.value("test", std::string("?")) + (model.empty() ? "" : " (" + model + ")") + ":";
+  if (!failed.empty())
+    n += " " + std::to_string(failed.size()) + " run(s) failed (the first: " + failed[0].value("status", std::string("?")) +
+         ": " + failed[0].value("message", std::string()) + ")";
+  if (!skipped.empty())
+    n += std::string(failed.empty() ? "" : ";") + " " + std::to_string(skipped.size()) + " run(s) skipped (" +
+         skipped[0].value("reason", std::string()) + ")";
+  return n + ".";
 }
 
 // The note for a drum test whose bed slipped on the shell in some frames, or "".
@@ -42,12 +59,13 @@ void add_verification(const nlohmann::json& v, Document& doc) {
   Section s{"verification", "Verification", {}};
   if (v.contains("model")) s.paragraph("Model verified: " + format_value(v["model"]) + ".");
   Table t{"verification", "Verification tests: simulation against experiment", kTestColumns, {}, {}};
-  std::vector<std::string> slip_notes;
+  std::vector<std::string> notes;  // failed, skipped and slipping runs
   for (const auto& x : member(v, "tests")) {
     t.add_row(test_row(x));
-    if (auto n = slipping_note(x, ""); !n.empty()) slip_notes.push_back(std::move(n));
+    if (auto n = runs_note(x, ""); !n.empty()) notes.push_back(std::move(n));
+    if (auto n = slipping_note(x, ""); !n.empty()) notes.push_back(std::move(n));
   }
-  t.notes.insert(t.notes.end(), slip_notes.begin(), slip_notes.end());
+  t.notes.insert(t.notes.end(), notes.begin(), notes.end());
   t.notes.push_back("Relative error = simulated mean / experimental mean - 1; \"simulation only\": the study gives no experimental value.");
   s.table(std::move(t));
   doc.sections.push_back(std::move(s));
@@ -92,6 +110,7 @@ void add_selection(const nlohmann::json& m, Document& doc) {
       auto r = test_row(test);
       r.insert(r.begin(), model);
       by_model.add_row(std::move(r));
+      if (auto n = runs_note(test, model); !n.empty()) by_model.notes.push_back(std::move(n));
       if (auto n = slipping_note(test, model); !n.empty()) by_model.notes.push_back(std::move(n));
     }
     pts.push_back({as_number(x.value("cpu_seconds", nlohmann::json())), 100.0 * std::fabs(as_number(x.value("mean_abs_rel_error", nlohmann::json()))),
