@@ -7,6 +7,7 @@
 //   recorded as failed with the signal, and the worker is restarted.
 //   MpiExecutor (calibrate/study/mpi_executor.hpp): ranks 1..N-1 of an MPI job.
 #include <cstddef>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -21,6 +22,21 @@ using RecordCallback = std::function<void(std::size_t index, EvaluationRecord re
 // Asked just before request `index` is handed to a simulation slot: a record to report instead of
 // running it (a run the study no longer needs), or nothing to run it.
 using DispatchCheck = std::function<std::optional<EvaluationRecord>(std::size_t index)>;
+
+// Reports the queue's leading requests that `check` answers instead of a simulation (popped, and
+// their records passed to `done`); returns how many.
+inline std::size_t skip_unneeded(std::deque<std::size_t>& queue, const DispatchCheck& check, const RecordCallback& done) {
+  std::size_t skipped = 0;
+  while (check && !queue.empty()) {
+    std::optional<EvaluationRecord> instead = check(queue.front());
+    if (!instead) break;
+    const std::size_t i = queue.front();
+    queue.pop_front();
+    done(i, std::move(*instead));
+    ++skipped;
+  }
+  return skipped;
+}
 
 class Executor {
  public:

@@ -53,27 +53,16 @@ class MpiExecutor final : public Executor {
     for (std::size_t i = 0; i < requests.size(); ++i) queue.push_back(i);
     std::vector<long> busy(static_cast<std::size_t>(MpiSession::size()), -1);
     std::size_t finished = 0;
-    // The queue's leading requests that `check` answers instead of a simulation.
-    const auto skip_unneeded = [&] {
-      while (check && !queue.empty()) {
-        std::optional<EvaluationRecord> instead = check(queue.front());
-        if (!instead) return;
-        const std::size_t i = queue.front();
-        queue.pop_front();
-        done(i, std::move(*instead));
-        ++finished;
-      }
-    };
     while (finished < requests.size()) {
       for (int r = 1; r < MpiSession::size(); ++r) {
         if (busy[static_cast<std::size_t>(r)] >= 0) continue;
-        skip_unneeded();
+        finished += skip_unneeded(queue, check, done);
         if (queue.empty()) break;
         busy[static_cast<std::size_t>(r)] = static_cast<long>(queue.front());
         send(requests[queue.front()].to_json().dump(), r, kTagRequest);
         queue.pop_front();
       }
-      skip_unneeded();
+      finished += skip_unneeded(queue, check, done);
       bool running = false;
       for (const long b : busy) running = running || b >= 0;
       if (!running) continue;  // everything left was skipped, or is queued for a free rank

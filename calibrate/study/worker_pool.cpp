@@ -61,7 +61,7 @@ class WorkerPool final : public Executor {
     while (finished < requests.size()) {
       for (auto& w : workers_) {
         if (w.busy_with >= 0) continue;
-        skip_unneeded(queue, check, done, finished);
+        finished += skip_unneeded(queue, check, done);
         if (queue.empty()) continue;
         if (w.pid < 0) start(w);
         const std::size_t i = queue.front();
@@ -73,7 +73,7 @@ class WorkerPool final : public Executor {
           ++finished;
         }
       }
-      skip_unneeded(queue, check, done, finished);
+      finished += skip_unneeded(queue, check, done);
       std::vector<pollfd> fds;
       std::vector<Worker*> who;
       for (auto& w : workers_)
@@ -117,19 +117,6 @@ class WorkerPool final : public Executor {
   }
 
  private:
-  // Reports the queue's leading requests that `check` answers instead of a simulation.
-  static void skip_unneeded(std::deque<std::size_t>& queue, const DispatchCheck& check, const RecordCallback& done,
-                            std::size_t& finished) {
-    while (check && !queue.empty()) {
-      std::optional<EvaluationRecord> instead = check(queue.front());
-      if (!instead) return;
-      const std::size_t i = queue.front();
-      queue.pop_front();
-      done(i, std::move(*instead));
-      ++finished;
-    }
-  }
-
   EvaluationRecord failed_record(const EvalRequest& r, const std::string& why) const {
     EvaluationRecord rec;
     rec.stage = r.stage;
