@@ -47,12 +47,20 @@ EvalRequest EvalRequest::from_json(const nlohmann::json& j) {
   return r;
 }
 
-EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,
-                          const std::string& config_hash) {
+EvaluationRecord request_record(const StudyConfig& study, const EvalRequest& request) {
   EvaluationRecord rec;
   rec.stage = request.stage;
   rec.inputs = request.inputs;
   rec.seed = request.seed;
+  rec.metrics = {{"study_target", request.target}, {"study_target_name", study.scene_of(request.target).name}};
+  if (request.model != 0) rec.metrics["study_model"] = study.models.at(static_cast<std::size_t>(request.model)).name;
+  return rec;
+}
+
+EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,
+                          const std::string& config_hash) {
+  EvaluationRecord rec = request_record(study, request);
+  const nlohmann::json tags = rec.metrics;
   rec.config_hash = config_hash;
   rec.seedcal_version = version_string();
   const StudyTarget& target = study.scene_of(request.target);
@@ -80,9 +88,7 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
     rec.message = e.what();
   }
   if (rec.metrics.contains("runs")) rec.metrics.erase("runs");  // one run: the same numbers again
-  rec.metrics["study_target"] = request.target;
-  rec.metrics["study_target_name"] = target.name;
-  if (request.model != 0) rec.metrics["study_model"] = model.name;
+  rec.metrics.update(tags);  // the scene's metrics replaced them
   rec.cpu_seconds = rec.metrics.value("cpu_seconds", static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC);
   rec.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return rec;

@@ -29,6 +29,11 @@ struct EvalRequest {
 // parameter at `inputs` (path -> natural value) as a TOML float.
 std::vector<std::string> scene_overrides(const StudyModel& model, const StudyTarget& test, const nlohmann::json& inputs);
 
+// A record of `request` without a result: its stage, inputs and seed, and the metrics that tie it
+// to its scene (study_target, study_target_name) and model (study_model, for models after the
+// first). `evaluate` fills in the rest; a run the study skips is reported as such a record.
+EvaluationRecord request_record(const StudyConfig& study, const EvalRequest& request);
+
 // Runs the request in this process with `threads` OpenMP threads; never throws for a failed or
 // unstable simulation or a scene error: the record says "failed" and why.
 EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, int threads,

@@ -48,22 +48,19 @@ void Progress::stage(const std::string& name, int planned) {
 }
 
 void Progress::run_done(bool reused, double wall_seconds, const std::string& what) {
-  ++done_;
-  ++total_done_;
   if (!reused) {
     run_wall_sum_ += wall_seconds;
     ++run_wall_count_;
   }
-  log_ << utc_now() << " " << stage_ << " " << done_ << "/" << planned_ << (reused ? " (from the store) " : " ")
-       << what << "\n";
-  log_.flush();
-  draw();
+  count_run(reused ? " (from the store) " : " ", what);
 }
 
-void Progress::run_skipped(const std::string& what) {
+void Progress::run_skipped(const std::string& what) { count_run(" (skipped) ", what); }
+
+void Progress::count_run(const char* tag, const std::string& what) {
   ++done_;
   ++total_done_;
-  log_ << utc_now() << " " << stage_ << " " << done_ << "/" << planned_ << " (skipped) " << what << "\n";
+  log_ << utc_now() << " " << stage_ << " " << done_ << "/" << planned_ << tag << what << "\n";
   log_.flush();
   draw();
 }

@@ -25,6 +25,8 @@ class Progress {
 
  private:
   void draw();
+  // Counts a planned run as done and logs it: "STAGE k/n" + `tag` + `what`.
+  void count_run(const char* tag, const std::string& what);
   std::ofstream log_;
   bool terminal_;
   int slots_;

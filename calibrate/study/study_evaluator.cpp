@@ -65,13 +65,7 @@ std::vector<EvaluationRecord> StudyEvaluator::run(const std::vector<EvalRequest>
     check = [&](std::size_t k) -> std::optional<EvaluationRecord> {
       const std::string why = unneeded(where[k]);
       if (why.empty()) return std::nullopt;
-      const EvalRequest& req = todo[k];
-      EvaluationRecord rec;
-      rec.stage = req.stage;
-      rec.inputs = req.inputs;
-      rec.seed = req.seed;
-      rec.metrics = {{"study_target", req.target}, {"study_target_name", study_.scene_of(req.target).name}};
-      if (req.model != 0) rec.metrics["study_model"] = study_.models[static_cast<std::size_t>(req.model)].name;
+      EvaluationRecord rec = request_record(study_, todo[k]);
       rec.status = "skipped";
       rec.message = why;
       return rec;

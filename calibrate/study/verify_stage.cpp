@@ -45,6 +45,10 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
   std::vector<std::uint64_t> seeds;
   double cpu = 0.0;
   int ran = 0;
+  // A drum whose shell slid under a bed at rest (scenes/drum.hpp): the frames' angles are held by
+  // the wall friction, which the report says beside the result.
+  int drum_frames = 0, slipping = 0;
+  bool drum = false;
   nlohmann::json failures = nlohmann::json::array(), skipped = nlohmann::json::array();
   for (const auto* r : runs) {
     if (r->status == "skipped") {  // not run (StudyEvaluator::run): no result, no cost
@@ -53,6 +57,11 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
     }
     cpu += r->cpu_seconds;
     ++ran;
+    if (r->metrics.contains("slipping_frames")) {
+      drum = true;
+      slipping += r->metrics["slipping_frames"].get<int>();
+      drum_frames += static_cast<int>(r->metrics.value("frames", nlohmann::json::array()).size());
+    }
     const double x = record_metric(s, *r);
     if (std::isfinite(x)) {
       v.push_back(x);
@@ -66,16 +75,6 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
                       {"n", v.size()}, {"samples", v}, {"seeds", seeds}, {"cpu_seconds", *cpu_per_run}};
   if (!failures.empty()) j["failures"] = failures;
   if (!skipped.empty()) j["skipped"] = skipped;
-  // A drum whose shell slid under a bed at rest (scenes/drum.hpp): the frames' angles are held by
-  // the wall friction, which the report says beside the result.
-  int drum_frames = 0, slipping = 0;
-  bool drum = false;
-  for (const auto* r : runs) {
-    if (!r->metrics.contains("slipping_frames")) continue;
-    drum = true;
-    slipping += r->metrics["slipping_frames"].get<int>();
-    drum_frames += static_cast<int>(r->metrics.value("frames", nlohmann::json::array()).size());
-  }
   if (drum) {
     j["drum_frames"] = drum_frames;
     j["drum_slipping_frames"] = slipping;

@@ -26,13 +26,18 @@ std::vector<std::string> test_row(const nlohmann::json& x) {
           format_value(x.value("cpu_seconds", nlohmann::json()))};
 }
 
+// What a note under a table is about: the test, and its model in the tables of every model.
+std::string note_subject(const nlohmann::json& x, const std::string& model) {
+  return x.value("test", std::string("?")) + (model.empty() ? "" : " (" + model + ")") + ":";
+}
+
 // The note for a test some of whose runs failed or were skipped, or "": how many, and the first
 // reason (a test with no result says why).
 std::string runs_note(const nlohmann::json& x, const std::string& model) {
   const auto& failed = member(x, "failures");
   const auto& skipped = member(x, "skipped");
   if (failed.empty() && skipped.empty()) return "";
-  std::string n = x.value("test", std::string("?")) + (model.empty() ? "" : " (" + model + ")") + ":";
+  std::string n = note_subject(x, model);
   if (!failed.empty())
     n += " " + std::to_string(failed.size()) + " run(s) failed (the first: " + failed[0].value("status", std::string("?")) +
          ": " + failed[0].value("message", std::string()) + ")";
@@ -46,7 +51,7 @@ std::string runs_note(const nlohmann::json& x, const std::string& model) {
 std::string slipping_note(const nlohmann::json& x, const std::string& model) {
   const int slipping = x.value("drum_slipping_frames", 0);
   if (slipping <= 0) return "";
-  return x.value("test", std::string("?")) + (model.empty() ? "" : " (" + model + ")") + ": the drum's shell slid under a bed at rest in " +
+  return note_subject(x, model) + " the drum's shell slid under a bed at rest in " +
          std::to_string(slipping) + " of " + std::to_string(x.value("drum_frames", 0)) +
          " frames (wall layer below 0.1 of the shell's speed): those angles are held by the wall friction, not a dynamic angle of "
          "repose; a rougher drum wall (higher seed-wall friction) lets the shell carry the bed (docs/scenes/drum.md).";
@@ -59,13 +64,11 @@ void add_verification(const nlohmann::json& v, Document& doc) {
   Section s{"verification", "Verification", {}};
   if (v.contains("model")) s.paragraph("Model verified: " + format_value(v["model"]) + ".");
   Table t{"verification", "Verification tests: simulation against experiment", kTestColumns, {}, {}};
-  std::vector<std::string> notes;  // failed, skipped and slipping runs
-  for (const auto& x : member(v, "tests")) {
+  for (const auto& x : member(v, "tests")) {  // with notes on failed, skipped and slipping runs
     t.add_row(test_row(x));
-    if (auto n = runs_note(x, ""); !n.empty()) notes.push_back(std::move(n));
-    if (auto n = slipping_note(x, ""); !n.empty()) notes.push_back(std::move(n));
+    if (auto n = runs_note(x, ""); !n.empty()) t.notes.push_back(std::move(n));
+    if (auto n = slipping_note(x, ""); !n.empty()) t.notes.push_back(std::move(n));
   }
-  t.notes.insert(t.notes.end(), notes.begin(), notes.end());
   t.notes.push_back("Relative error = simulated mean / experimental mean - 1; \"simulation only\": the study gives no experimental value.");
   s.table(std::move(t));
   doc.sections.push_back(std::move(s));
