@@ -45,6 +45,8 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   j["inertial_number"] = r.inertial_number;
   j["dilation_m"] = r.dilation_m;
   j["upper_ring_lift_m"] = r.upper_ring_lift_m;
+  j["consolidated_height_m"] = r.consolidated_height_m;
+  j["seeds_across_split"] = r.seeds_across_split;
   j["seeds"] = r.seeds;
   j["sample_mass_kg"] = r.sample_mass_kg;
   j["sample_bulk_density_kg_m3"] = r.sample_mass_kg / (std::numbers::pi * 0.25 * spec.diameter_m * spec.diameter_m * spec.sample_height_m);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "solver/scenes/settle.hpp"
@@ -120,6 +121,19 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   }
   servo->set_transverse_velocity(v);
   const double z0 = sim.walls()[lid_index].pose.origin_m.z();
+  res.consolidated_height_m = z0;
+  {
+    const BodyState& B = sim.bodies();
+    const SphereState& S = sim.spheres();
+    for (std::size_t b = 0; b < B.size(); ++b) {
+      double zlo = std::numeric_limits<double>::infinity(), zhi = -zlo;
+      for (std::uint32_t i = B.first_sphere[b]; i < B.first_sphere[b + 1]; ++i) {
+        zlo = std::min(zlo, S.position_m[i].z() - S.radius_m[i]);
+        zhi = std::max(zhi, S.position_m[i].z() + S.radius_m[i]);
+      }
+      if (zlo < half && zhi > half) ++res.seeds_across_split;
+    }
+  }
   const double x0 = sim.walls()[upper_index].pose.origin_m.x();
   const auto per_record = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(spec.record_interval_s / dt));
   double sigma_sum = 0.0;

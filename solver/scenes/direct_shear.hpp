@@ -66,6 +66,10 @@ struct DirectShearResult {
   double inertial_number = 0.0;
   double dilation_m = 0.0;             // lid rise from the start of shear to the end
   double upper_ring_lift_m = 0.0;      // highest lift of the upper ring off the lower one
+  // The specimen as consolidated, at the start of shear: the lid's height above the floor and the
+  // seeds whose clump reaches across the split plane (z = H/2): what interlocks the two halves.
+  double consolidated_height_m = 0.0;
+  std::size_t seeds_across_split = 0;
   std::size_t seeds = 0;
   double sample_mass_kg = 0.0;
   std::vector<ShearSample> curve;

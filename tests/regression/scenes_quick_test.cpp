@@ -29,6 +29,12 @@ TEST(ScenesQuick, DirectShearStrengthIsSensibleAndRisesWithFriction) {
     for (const auto* r : {&a, &b}) {
       EXPECT_GE((*r)["upper_ring_lift_m"].get<double>(), 0.0);
       EXPECT_LT((*r)["upper_ring_lift_m"].get<double>(), 0.004);
+      // Levelled by centroid at 20 mm, the consolidated specimen stands 20-22 mm (seeds 1-12 at
+      // Table 6's values); part of its seeds reach across the split.
+      EXPECT_GT((*r)["consolidated_height_m"].get<double>(), 0.018);
+      EXPECT_LT((*r)["consolidated_height_m"].get<double>(), 0.025);
+      EXPECT_GT((*r)["seeds_across_split"].get<int>(), 0);
+      EXPECT_LT((*r)["seeds_across_split"].get<int>(), (*r)["seeds"].get<int>());
     }
     lo.push_back(a["shear_strength_pa"].get<double>());
     hi.push_back(b["shear_strength_pa"].get<double>());
