@@ -4,6 +4,7 @@
 // an index against one setting, checked in pooled sd (calibrate/studies/trend_study.hpp). Writes DIR/KIND.json
 // (with seed, options and version) and DIR/KIND.csv, prints the JSON, and renders DIR/report.html
 // and report.md of every study in DIR (reports/studies_report.hpp).
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -143,14 +144,17 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   te->add_option("--repeats", tn->o.repeats, "seeds per level")->check(CLI::Range(2, 1000))->capture_default_str();
   te->add_option("--sd-multiple", tn->o.sd_multiple, "required change, in pooled sd")->check(CLI::Range(0.0, 100.0))->capture_default_str();
   te->add_option("--out", tn->out, "output directory")->capture_default_str();
+  te->add_option("--jobs", tn->o.jobs, "levels simulated at once (default 1; threads per simulation default to cores / jobs)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
   add_common_options(*te, g);
   te->callback([tn, &g] {
-    tn->o.threads = g.resolved_threads();
+    tn->o.threads = g.threads > 0 ? g.threads : std::max(1, g.resolved_threads() / tn->o.jobs);
     tn->o.seed = g.seed;
     tn->o.out_dir = tn->out;
     check_file("--scene", tn->o.scene);
     auto j = trend_study(tn->o);
-    j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", tn->o.threads}};
+    j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", tn->o.threads},
+                       {"jobs", tn->o.jobs}};
     std::cerr << j["verdict"].get<std::string>() << "\n";
     write_study("trend", j, trend_csv(j), tn->out);
   });

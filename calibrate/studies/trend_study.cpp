@@ -1,9 +1,13 @@
 #include "calibrate/studies/trend_study.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 #include "calibrate/cli/errors.hpp"
 #include "calibrate/scenes/scene_file.hpp"
@@ -55,19 +59,49 @@ nlohmann::json trend_study(const TrendOptions& o) {
   const double sign = o.expect == "rise" ? 1.0 : -1.0;
   std::string metric = o.metric;
   nlohmann::json j = {{"study", "trend"}, {"scene", o.scene}, {"sets", o.sets}, {"key", o.key}, {"expect", o.expect},
-                      {"sd_multiple", o.sd_multiple}, {"repeats", o.repeats}, {"seed", o.seed}};
+                      {"sd_multiple", o.sd_multiple}, {"repeats", o.repeats}, {"seed", o.seed}, {"jobs", o.jobs}};
+  if (o.jobs < 1) throw InputError("--jobs = " + std::to_string(o.jobs) + ": allowed range 1 .. 1000");
+  const std::size_t n = o.levels.size();
+  std::vector<std::string> set(n), name(n);
+  std::vector<std::vector<std::string>> sets(n, o.sets);
+  for (std::size_t i = 0; i < n; ++i) {
+    char buf[256], dir[64];
+    std::snprintf(buf, sizeof buf, "%s=%.17g", o.key.c_str(), o.levels[i]);
+    std::snprintf(dir, sizeof dir, "level_%zu_%.4g", i, o.levels[i]);
+    set[i] = buf;
+    name[i] = dir;
+    sets[i].push_back(set[i]);
+    // Every level is checked before any runs: a bad key or value (the scene's own checks, exit 2)
+    // at the last level is reported now, not after the other levels' simulations.
+    check_scene(load_scene_file(o.scene, sets[i]));
+  }
+  // Levels are independent (their seeds do not depend on the order), so `jobs` of them run at
+  // once, each on its own thread with `threads` OpenMP threads; the results are those of one job.
+  std::vector<nlohmann::json> runs(n);
+  std::vector<std::exception_ptr> errors(n);
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i; (i = next++) < n;) {
+      try {
+        runs[i] = run_scene_file(o.scene, sets[i], o.threads, o.seed, o.repeats,
+                                 o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name[i]);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> pool;
+    for (std::size_t k = 1; k < std::min<std::size_t>(static_cast<std::size_t>(o.jobs), n); ++k) pool.emplace_back(work);
+    work();
+  }
+  for (const std::exception_ptr& e : errors)
+    if (e) std::rethrow_exception(e);
   nlohmann::json levels = nlohmann::json::array();
-  for (std::size_t i = 0; i < o.levels.size(); ++i) {
-    char set[256], name[64];
-    std::snprintf(set, sizeof set, "%s=%.17g", o.key.c_str(), o.levels[i]);
-    std::snprintf(name, sizeof name, "level_%zu_%.4g", i, o.levels[i]);
-    std::vector<std::string> sets = o.sets;
-    sets.push_back(set);
-    // A bad key or value is bad input (exit 2) from the scene's own checks.
-    const nlohmann::json m = run_scene_file(o.scene, sets, o.threads, o.seed, o.repeats,
-                                            o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name);
+  for (std::size_t i = 0; i < n; ++i) {
+    const nlohmann::json& m = runs[i];
     if (metric.empty()) metric = m.value("index_key", "");
-    nlohmann::json row = {{"value", o.levels[i]}, {"set", set}, {"index", sample_stats(per_run(m, metric))},
+    nlohmann::json row = {{"value", o.levels[i]}, {"set", set[i]}, {"index", sample_stats(per_run(m, metric))},
                           {"cpu_seconds_per_run", sample_stats(per_run(m, "cpu_seconds"))["mean"]},
                           {"status", m.value("status", "ok")}};
     if (m.contains("failure")) row["failure"] = m["failure"];

@@ -151,6 +151,33 @@ TEST(StudyCli, TrendOfAnUnknownKeyIsBadInput) {
   EXPECT_NE(r.output.find("restitutio"), std::string::npos) << r.output;
 }
 
+// Levels simulated at once give the levels of one job (each level's seeds are its own), and the
+// provenance says how they ran.
+TEST(StudyCli, TrendWithTwoJobsGivesTheLevelsOfOne) {
+  const std::string scene = source_dir() + "/data/scenes/jinong1/free_drop.toml";
+  const std::string args = "trend --scene " + scene + " --vary seed_steel.restitution --levels 0.3 0.6 0.9 --repeats 2";
+  const auto one = run_study(args, scratch_dir("study-trend-jobs1"), "trend");
+  const auto two = run_study(args + " --jobs 2", scratch_dir("study-trend-jobs2"), "trend");
+  ASSERT_EQ(one["levels"].size(), 3u);
+  // Every field but the CPU time per run, which is measured.
+  for (std::size_t i = 0; i < 3; ++i)
+    EXPECT_EQ(one["levels"][i]["index"]["samples"], two["levels"][i]["index"]["samples"]) << i;
+  EXPECT_EQ(two["jobs"], 2);
+  EXPECT_EQ(two["provenance"]["jobs"], 2);
+  EXPECT_EQ(one["verdict"], two["verdict"]);
+}
+
+// A bad value at the last level is bad input before any level runs.
+TEST(StudyCli, TrendChecksEveryLevelBeforeRunningAny) {
+  const std::string dir = scratch_dir("study-trend-bad-level");
+  const auto r = run_cli("study trend --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml" +
+                         " --vary seed_steel.restitution --levels 0.3 0.6 1.5 --jobs 2 --threads 1 --out " + dir);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("restitution"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1.5"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/scenes")) << "a level ran before the check";
+}
+
 TEST(StudyCli, MissingSceneIsBadInput) {
   const auto r = run_cli("study multicontact --free-drop /nonexistent.toml --out " + scratch_dir("study-bad"));
   EXPECT_EQ(r.exit_code, 2) << r.output;
