@@ -144,11 +144,11 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   te->add_option("--repeats", tn->o.repeats, "seeds per level")->check(CLI::Range(2, 1000))->capture_default_str();
   te->add_option("--sd-multiple", tn->o.sd_multiple, "required change, in pooled sd")->check(CLI::Range(0.0, 100.0))->capture_default_str();
   te->add_option("--out", tn->out, "output directory")->capture_default_str();
-  te->add_option("--jobs", tn->o.jobs, "levels simulated at once (default 1; threads per simulation default to cores / jobs)")
+  te->add_option("--jobs", tn->o.jobs, "simulations at once, one thread each (default 1)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
   add_common_options(*te, g);
   te->callback([tn, &g] {
-    tn->o.threads = g.threads > 0 ? g.threads : std::max(1, g.resolved_threads() / tn->o.jobs);
+    tn->o.threads = g.threads > 0 ? g.threads : (tn->o.jobs > 1 ? 1 : g.resolved_threads());
     tn->o.seed = g.seed;
     tn->o.out_dir = tn->out;
     check_file("--scene", tn->o.scene);

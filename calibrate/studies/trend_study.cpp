@@ -61,6 +61,12 @@ nlohmann::json trend_study(const TrendOptions& o) {
   nlohmann::json j = {{"study", "trend"}, {"scene", o.scene}, {"sets", o.sets}, {"key", o.key}, {"expect", o.expect},
                       {"sd_multiple", o.sd_multiple}, {"repeats", o.repeats}, {"seed", o.seed}, {"jobs", o.jobs}};
   if (o.jobs < 1) throw InputError("--jobs = " + std::to_string(o.jobs) + ": allowed range 1 .. 1000");
+  // Runs that share the process are timed by their own thread's CPU clock (run_cpu_seconds), which
+  // counts a run's work only when it has one thread.
+  if (o.jobs > 1 && o.threads > 1)
+    throw InputError("--threads = " + std::to_string(o.threads) + " with --jobs = " + std::to_string(o.jobs) +
+                     ": simulations run at once are one thread each (allowed: --threads 1), so that each "
+                     "run's CPU time is its own");
   const std::size_t n = o.levels.size();
   std::vector<std::string> set(n), name(n);
   std::vector<std::vector<std::string>> sets(n, o.sets);
@@ -75,36 +81,58 @@ nlohmann::json trend_study(const TrendOptions& o) {
     // at the last level is reported now, not after the other levels' simulations.
     check_scene(load_scene_file(o.scene, sets[i]));
   }
-  // Levels are independent (their seeds do not depend on the order), so `jobs` of them run at
-  // once, each on its own thread with `threads` OpenMP threads; the results are those of one job.
-  std::vector<nlohmann::json> runs(n);
-  std::vector<std::exception_ptr> errors(n);
+  // Every run is independent (seed o.seed + r at every level, whatever the order), so `jobs` of
+  // them run at once, each on its own thread with `threads` OpenMP threads, level by level. A
+  // level's files come from its first seed, and its series ends at its first failed run, as in one
+  // job: the results are those of one job.
+  const std::size_t reps = static_cast<std::size_t>(o.repeats), tasks = n * reps;
+  std::vector<nlohmann::json> run(tasks);
+  std::vector<std::exception_ptr> errors(tasks);
   std::atomic<std::size_t> next{0};
+  std::vector<std::atomic<std::size_t>> first_failed(n);  // a level's first failed seed; reps: none
+  for (auto& f : first_failed) f.store(reps);
   const auto work = [&] {
-    for (std::size_t i; (i = next++) < n;) {
+    for (std::size_t t; (t = next++) < tasks;) {
+      const std::size_t i = t / reps, r = t % reps;
+      if (r > first_failed[i].load()) continue;  // after a failed run: not needed
+      const std::string dir = o.out_dir.empty() || r > 0 ? std::string() : o.out_dir + "/scenes/" + name[i];
       try {
-        runs[i] = run_scene_file(o.scene, sets[i], o.threads, o.seed, o.repeats,
-                                 o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name[i]);
+        run[t] = run_scene_file(o.scene, sets[i], o.threads, o.seed + r, 1, dir);
+        if (run[t].value("status", "ok") != "ok") {
+          std::size_t f = first_failed[i].load();
+          while (r < f && !first_failed[i].compare_exchange_weak(f, r)) {
+          }
+        }
       } catch (...) {
-        errors[i] = std::current_exception();
+        errors[t] = std::current_exception();
       }
     }
   };
   {
     std::vector<std::jthread> pool;
-    for (std::size_t k = 1; k < std::min<std::size_t>(static_cast<std::size_t>(o.jobs), n); ++k) pool.emplace_back(work);
+    for (std::size_t k = 1; k < std::min<std::size_t>(static_cast<std::size_t>(o.jobs), tasks); ++k) pool.emplace_back(work);
     work();
   }
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < n; ++i) {
-    const nlohmann::json& m = runs[i];
-    if (metric.empty()) metric = m.value("index_key", "");
-    nlohmann::json row = {{"value", o.levels[i]}, {"set", set[i]}, {"index", sample_stats(per_run(m, metric))},
-                          {"cpu_seconds_per_run", sample_stats(per_run(m, "cpu_seconds"))["mean"]},
-                          {"status", m.value("status", "ok")}};
-    if (m.contains("failure")) row["failure"] = m["failure"];
+    nlohmann::json row = {{"value", o.levels[i]}, {"set", set[i]}, {"status", "ok"}};
+    std::vector<double> index, cpu;
+    for (std::size_t r = 0; r < reps; ++r) {
+      const nlohmann::json& m = run[i * reps + r];
+      if (metric.empty()) metric = m.value("index_key", "");
+      if (m.value("status", "ok") != "ok") {
+        row["status"] = m["status"];
+        row["failure"] = m.value("failure", nlohmann::json::object());
+        break;  // later seeds of this level do not count, as in one job
+      }
+      const std::vector<double> x = per_run(m, metric);
+      index.insert(index.end(), x.begin(), x.end());
+      cpu.push_back(m.value("cpu_seconds", 0.0));
+    }
+    row["index"] = sample_stats(index);
+    row["cpu_seconds_per_run"] = sample_stats(cpu)["mean"];
     levels.push_back(row);
   }
   nlohmann::json steps = nlohmann::json::array();

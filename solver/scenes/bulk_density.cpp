@@ -10,7 +10,7 @@ namespace seedcal {
 
 BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = run_cpu_seconds(spec.threads);
   BulkDensityResult res;
   const Vec3 c = spec.container_m;
   const double collar = spec.collar_fraction * c.z();

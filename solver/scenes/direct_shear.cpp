@@ -14,7 +14,7 @@ namespace seedcal {
 
 DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = run_cpu_seconds(spec.threads);
   DirectShearResult res;
   const double R = 0.5 * spec.diameter_m, H = spec.sample_height_m, half = 0.5 * H;
   const double guide = spec.pour_height_factor * H;

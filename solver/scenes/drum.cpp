@@ -41,7 +41,7 @@ double wall_layer_speed_ratio(const BodyState& bodies, double radius_m, double l
 
 DrumResult run_drum(const DrumSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = run_cpu_seconds(spec.threads);
   DrumResult res;
   const double R = 0.5 * spec.diameter_m, D = spec.depth_m;
   const double g = spec.physics.gravity_m_s2.norm();

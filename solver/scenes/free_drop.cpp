@@ -10,7 +10,7 @@ namespace seedcal {
 
 FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = run_cpu_seconds(spec.threads);
   FreeDropResult res;
 
   SimulationOptions opt;
@@ -112,7 +112,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   res.run.bodies = 1;
   res.run.spheres = run.spheres().size();
   res.run.dt_s = opt.dt_s;
-  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.cpu_seconds = run_cpu_seconds(spec.threads) - cpu0;
   res.run.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
   return res;
 }

@@ -8,7 +8,7 @@ namespace seedcal {
 
 ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   const auto wall_t0 = std::chrono::steady_clock::now();
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = run_cpu_seconds(spec.threads);
 
   SimulationOptions opt;
   opt.contact = spec.physics.contact;
@@ -85,7 +85,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   res.run.bodies = B.size();
   res.run.spheres = sim.spheres().size();
   res.run.dt_s = opt.dt_s;
-  res.run.cpu_seconds = process_cpu_seconds() - cpu0;
+  res.run.cpu_seconds = run_cpu_seconds(spec.threads) - cpu0;
   res.run.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
   return res;

@@ -77,7 +77,7 @@ HeapMeasurement measure_heap(const std::vector<std::pair<Vec3, double>>& spheres
 
 PilingResult run_piling(const PilingSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
-  const double cpu0 = process_cpu_seconds();
+  const double cpu0 = run_cpu_seconds(spec.threads);
   PilingResult res;
   const double R = 0.5 * spec.tube_diameter_m;
   const double tube_h = 2.0 * spec.fill_height_m;

@@ -106,9 +106,9 @@ double choose_time_step(const TimeStepSpec& spec, const TimeStepLimits& limits) 
   return dt;
 }
 
-double process_cpu_seconds() {
+double run_cpu_seconds(int threads) {
   timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  clock_gettime(threads > 1 ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 

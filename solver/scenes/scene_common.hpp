@@ -61,7 +61,12 @@ struct RunReport {
   GuardFailure failure;  // status ok unless a guard stopped the run
 };
 
-// CPU time of the whole process (all threads), s.
-double process_cpu_seconds();
+// CPU time of one run with `threads` OpenMP threads, s (a clock read; a run's time is the
+// difference of two reads). One thread: the calling thread's CPU clock. Every parallel region of
+// the solver runs on that thread alone then (`num_threads(threads)`, `if (threads > 1)`), so runs
+// that share a process on other threads (`seedcal study trend --jobs`) are not counted. More
+// threads: the whole process's CPU clock, which is the run's only when it has the process to
+// itself (one simulation per process, as `seedcal run` and the calibration's workers have).
+double run_cpu_seconds(int threads);
 
 }  // namespace seedcal

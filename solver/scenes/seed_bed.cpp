@@ -99,7 +99,7 @@ void finish_report(RunReport& r, Simulation& sim, double cpu0_s,
   r.bodies = sim.bodies().size();
   r.spheres = sim.spheres().size();
   r.dt_s = sim.options().dt_s;
-  r.cpu_seconds = process_cpu_seconds() - cpu0_s;
+  r.cpu_seconds = run_cpu_seconds(sim.options().threads) - cpu0_s;
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_t0).count();
 }
 

@@ -151,8 +151,9 @@ TEST(StudyCli, TrendOfAnUnknownKeyIsBadInput) {
   EXPECT_NE(r.output.find("restitutio"), std::string::npos) << r.output;
 }
 
-// Levels simulated at once give the levels of one job (each level's seeds are its own), and the
-// provenance says how they ran.
+// Simulations run at once give the levels of one job (each run's seed is its own), and the
+// provenance says how they ran. Each run's CPU time is its own thread's, not the process's: two
+// runs at once would otherwise each count the other's time.
 TEST(StudyCli, TrendWithTwoJobsGivesTheLevelsOfOne) {
   const std::string scene = source_dir() + "/data/scenes/jinong1/free_drop.toml";
   const std::string args = "trend --scene " + scene + " --vary seed_steel.restitution --levels 0.3 0.6 0.9 --repeats 2";
@@ -165,6 +166,17 @@ TEST(StudyCli, TrendWithTwoJobsGivesTheLevelsOfOne) {
   EXPECT_EQ(two["jobs"], 2);
   EXPECT_EQ(two["provenance"]["jobs"], 2);
   EXPECT_EQ(one["verdict"], two["verdict"]);
+  double cpu_one = 0.0, cpu_two = 0.0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    cpu_one += one["levels"][i]["cpu_seconds_per_run"].get<double>();
+    cpu_two += two["levels"][i]["cpu_seconds_per_run"].get<double>();
+  }
+  EXPECT_GT(cpu_two, 0.0);
+  // Measured: within 10 % of one job's; a process clock read by two runs at once gives about 2x.
+  EXPECT_LT(cpu_two, 1.5 * cpu_one) << "a run's CPU time includes the other job's";
+  const auto r = run_cli("study " + args + " --jobs 2 --threads 2 --out " + scratch_dir("study-trend-jobs-threads"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--threads 1"), std::string::npos) << r.output;
 }
 
 // A bad value at the last level is bad input before any level runs.
