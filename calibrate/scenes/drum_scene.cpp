@@ -1,5 +1,4 @@
 // `kind = "drum"`: schema in docs/scenes/drum.md.
-#include <cmath>
 #include <sstream>
 
 #include "calibrate/io/atomic_file.hpp"
@@ -38,11 +37,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
                       {"wall_layer_speed_ratio", f.wall_layer_speed_ratio}});
   j["frames"] = frames;
   j["wall_layer_speed_ratio"] = r.wall_layer_speed_ratio;
-  // Frames in which the shell slides under a bed at rest (Mellmann's slipping regime): their angle
-  // is held by the wall friction, not a dynamic angle of repose (docs/scenes/drum.md).
-  int slipping = 0;
-  for (const DrumFrame& f : r.frames) slipping += std::abs(f.wall_layer_speed_ratio) < kSlippingSpeedRatio;
-  j["slipping_frames"] = slipping;
+  j["slipping_frames"] = r.slipping_frames;
   j["speed_rpm"] = spec.speed_rpm;
   j["froude_number"] = r.froude_number;
   j["fill_height_m"] = r.fill_height_m;

@@ -120,6 +120,7 @@ DrumResult run_drum(const DrumSpec& spec) {
     DrumFrame fr{tf, 0.0, prof, fit_line(xs, zs)};
     fr.wall_layer_speed_ratio = wall_layer_speed_ratio(sim.bodies(), R, d, w);
     ratio_sum += fr.wall_layer_speed_ratio;
+    res.slipping_frames += std::abs(fr.wall_layer_speed_ratio) < kSlippingSpeedRatio;
     if (fr.fit.ok) {
       fr.angle_deg = std::atan(std::abs(fr.fit.slope)) * 180.0 / std::numbers::pi;
       sum += fr.angle_deg;

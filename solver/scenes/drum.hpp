@@ -51,6 +51,10 @@ struct DrumResult {
   double dynamic_angle_of_repose_deg = 0.0;
   double angle_sd_deg = 0.0;
   double wall_layer_speed_ratio = 0.0;  // mean over the frames (DrumFrame)
+  // Frames in which the shell slides under a bed at rest (|ratio| < kSlippingSpeedRatio,
+  // Mellmann's slipping regime): their angle is held by the wall friction, not a dynamic angle of
+  // repose (docs/scenes/drum.md).
+  int slipping_frames = 0;
   double froude_number = 0.0;
   double fill_height_m = 0.0;
   std::size_t seeds = 0;
