@@ -69,17 +69,19 @@ nlohmann::json trend_study(const TrendOptions& o) {
                      "run's CPU time is its own");
   const std::size_t n = o.levels.size();
   std::vector<std::string> set(n), name(n);
-  std::vector<std::vector<std::string>> sets(n, o.sets);
+  std::vector<SceneFile> scene(n);  // read once per level; its runs only read it
   for (std::size_t i = 0; i < n; ++i) {
     char buf[256], dir[64];
     std::snprintf(buf, sizeof buf, "%s=%.17g", o.key.c_str(), o.levels[i]);
     std::snprintf(dir, sizeof dir, "level_%zu_%.4g", i, o.levels[i]);
     set[i] = buf;
     name[i] = dir;
-    sets[i].push_back(set[i]);
+    std::vector<std::string> sets = o.sets;
+    sets.push_back(set[i]);
     // Every level is checked before any runs: a bad key or value (the scene's own checks, exit 2)
     // at the last level is reported now, not after the other levels' simulations.
-    check_scene(load_scene_file(o.scene, sets[i]));
+    scene[i] = load_scene_file(o.scene, sets);
+    check_scene(scene[i]);
   }
   // Every run is independent (seed o.seed + r at every level, whatever the order), so `jobs` of
   // them run at once, each on its own thread with `threads` OpenMP threads, level by level. A
@@ -97,7 +99,7 @@ nlohmann::json trend_study(const TrendOptions& o) {
       if (r > first_failed[i].load()) continue;  // after a failed run: not needed
       const std::string dir = o.out_dir.empty() || r > 0 ? std::string() : o.out_dir + "/scenes/" + name[i];
       try {
-        run[t] = run_scene_file(o.scene, sets[i], o.threads, o.seed + r, 1, dir);
+        run[t] = run_scene(scene[i], o.threads, o.seed + r, 1, dir);
         if (run[t].value("status", "ok") != "ok") {
           std::size_t f = first_failed[i].load();
           while (r < f && !first_failed[i].compare_exchange_weak(f, r)) {
