@@ -1,12 +1,23 @@
 // Stage 5: confirmation with fresh DEM replicates (seeds never used before) at the chosen point.
 // Per target: mean, sample sd, relative error e = mean / T - 1 and its two-sided confidence
-// interval e +- t_{(1+c)/2, n-1} sd / (sqrt(n) |T|) (Student t, GSL). The study has converged
-// when |e| <= tolerance for every target; the interval is reported with it, and whether it lies
-// inside +-tolerance too ("resolved": the replicates are enough to tell). Not converged: the
-// replicates join the surrogate data, `batch` infill points are chosen on the primary target's
-// Gaussian process by the target-matching expected improvement (doe/surrogate/acquisition.hpp),
-// run once each, the surrogates are refitted and solved again, and the new point is confirmed;
-// until the budget of DEM runs (every replicate counts) or the round limit is reached.
+// interval e +- t_{(1+c)/2, n-1} sd / (sqrt(n) |T|) (Student t, GSL), over every replicate run at
+// the point so far. The study has converged when |e| <= tolerance for every target; the interval
+// is reported with it, and whether it lies inside +-tolerance too ("resolved": the replicates are
+// enough to tell).
+//
+// Not converged, the next step depends on whether the miss is real:
+// - some target's interval excludes zero (a significant miss): the replicates join the surrogate
+//   data, `batch` infill points are chosen on the primary target's Gaussian process by the
+//   target-matching expected improvement (doe/surrogate/acquisition.hpp), run once each, the
+//   surrogates are refitted and solved again, and the new point is confirmed afresh;
+// - every interval holds zero (`hold_unless_significant`, the default): the data cannot tell the
+//   point from one on the target, so the point is kept and the next round adds `replicates`
+//   fresh runs to the same pool. Moving on such a round chases the run-to-run scatter: where the
+//   response depends weakly on a parameter, a shift of the surrogate by one standard error moves
+//   the solution far along its curve (docs/calibrate.md). Holding is the sequential test of a
+//   stochastic root (Pasupathy & Kim, ACM TOMACS 21 (2011) 19: the root estimate moves only on
+//   evidence; replicates at a fixed point shrink its interval as 1/sqrt(n)).
+// Until the budget of DEM runs (every replicate counts) or the round limit is reached.
 #include <cmath>
 #include <cstdio>
 
@@ -20,11 +31,16 @@
 namespace seedcal {
 namespace {
 
-nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round) {
+// Runs `replicates` fresh runs at st.chosen, adds them to `pool` (the replicates at that point so
+// far) and states the pooled result.
+nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std::vector<EvaluationRecord>& pool,
+                          int rounds_pooled) {
   const StudyConfig& s = ev.study();
   ev.announce("confirm round " + std::to_string(round), s.confirm.replicates * static_cast<int>(s.targets.size()));
-  const auto records = ev.run(ev.plan("confirm", st.chosen, s.confirm.replicates));
-  nlohmann::json out = {{"round", round}, {"targets", nlohmann::json::object()}};
+  const auto fresh = ev.run(ev.plan("confirm", st.chosen, s.confirm.replicates));
+  pool.insert(pool.end(), fresh.begin(), fresh.end());
+  const auto& records = pool;
+  nlohmann::json out = {{"round", round}, {"rounds_pooled", rounds_pooled}, {"targets", nlohmann::json::object()}};
   bool all_ok = true;
   for (std::size_t t = 0; t < s.targets.size(); ++t) {
     std::vector<double> v;
@@ -59,16 +75,29 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round) {
     c["confidence"] = s.confirm.confidence;
     c["within_tolerance"] = std::fabs(e) <= s.confirm.tolerance;
     c["resolved"] = std::fabs(e) + half <= s.confirm.tolerance;
+    // The interval excludes zero: the point misses the target beyond the scatter.
+    c["significant_miss"] = e - half > 0.0 || e + half < 0.0;
     all_ok = all_ok && std::fabs(e) <= s.confirm.tolerance;
     out["targets"][s.targets[t].metric] = c;
   }
   out["converged"] = all_ok;
+  out["runs_at_point"] = pool.size();
   nlohmann::json at = nlohmann::json::object();
   for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
   out["point"] = at;
   st.confirmed = out["targets"];
   st.converged = all_ok;
   return out;
+}
+
+// Whether a round's pooled result shows a significant miss on some target. A target with fewer
+// than two finished replicates has no interval: the point is moved (nothing supports it).
+bool significant_miss(const nlohmann::json& round) {
+  for (const auto& [metric, c] : round["targets"].items()) {
+    (void)metric;
+    if (!c.contains("significant_miss") || c["significant_miss"].get<bool>()) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -78,16 +107,19 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
   const int nt = static_cast<int>(s.targets.size());
   nlohmann::json report = {{"tolerance", s.confirm.tolerance}, {"replicates", s.confirm.replicates},
                            {"budget", s.confirm.max_evaluations}, {"rounds", nlohmann::json::array()}};
+  report["hold_unless_significant"] = s.confirm.hold_unless_significant;
+  std::vector<EvaluationRecord> pool;  // every replicate at st.chosen so far
+  int rounds_pooled = 0;
   for (int round = 1;; ++round) {
-    report["rounds"].push_back(confirm_at(ev, st, round));
+    report["rounds"].push_back(confirm_at(ev, st, round, pool, ++rounds_pooled));
     {
       const auto& last = report["rounds"].back();
       std::string line = "confirm round " + std::to_string(round) + ":";
       for (const auto& [metric, c] : last["targets"].items()) {
         if (!c.contains("rel_error")) continue;
         char buf[256];
-        std::snprintf(buf, sizeof buf, " %s mean %.6g (target %.6g), error %+.2f %% (%g %% interval %+.2f .. %+.2f %%)",
-                      metric.c_str(), c["mean"].get<double>(), c["target"].get<double>(),
+        std::snprintf(buf, sizeof buf, " %s mean %.6g of %d runs (target %.6g), error %+.2f %% (%g %% interval %+.2f .. %+.2f %%)",
+                      metric.c_str(), c["mean"].get<double>(), c["n"].get<int>(), c["target"].get<double>(),
                       100.0 * c["rel_error"].get<double>(), 100.0 * s.confirm.confidence,
                       100.0 * c["rel_error_ci"][0].get<double>(), 100.0 * c["rel_error_ci"][1].get<double>());
         line += buf;
@@ -97,9 +129,19 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
     st.rounds = round;
     store.set_stage("confirm", report);
     if (st.converged) { report["stop_reason"] = "converged"; break; }
-    const int next_cost = (s.confirm.batch + s.confirm.replicates) * nt;
+    const bool hold = s.confirm.hold_unless_significant && !significant_miss(report["rounds"].back());
+    const int next_cost = ((hold ? 0 : s.confirm.batch) + s.confirm.replicates) * nt;
     if (round >= s.confirm.max_rounds) { report["stop_reason"] = "round limit"; break; }
     if (ev.runs_used() + next_cost > s.confirm.max_evaluations) { report["stop_reason"] = "budget of DEM runs"; break; }
+    report["rounds"].back()["next"] = hold ? "hold: every target's interval holds zero; more replicates here"
+                                           : "move: infill, refit and solve again";
+    if (hold) {
+      ev.note("confirm round " + std::to_string(round) +
+              ": the miss is within the scatter; the point is kept and confirmed with more replicates");
+      continue;
+    }
+    pool.clear();
+    rounds_pooled = 0;
     // Infill on the primary target's Gaussian process, conditioned on everything so far.
     if (s.confirm.batch > 0) {
       const int primary = primary_target(s);

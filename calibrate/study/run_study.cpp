@@ -97,7 +97,30 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
     digest["surrogate"] = {{"round", round}, {"fits", fits}};
     break;
   }
-  if (stages.contains("confirm")) digest["confirm_stop_reason"] = stages["confirm"].value("stop_reason", std::string("running"));
+  if (stages.contains("confirm")) {
+    digest["confirm_stop_reason"] = stages["confirm"].value("stop_reason", std::string("running"));
+    // Per round: where, how many replicates the pooled result rests on, and what came next.
+    nlohmann::json rounds = nlohmann::json::array();
+    const nlohmann::json& confirm = stages["confirm"];
+    if (confirm.contains("rounds")) {
+      for (const nlohmann::json& r : confirm["rounds"]) {
+        nlohmann::json d = nlohmann::json::object();
+        for (const char* k : {"round", "point", "runs_at_point", "next"})
+          if (r.contains(k)) d[k] = r[k];
+        d["infill_points"] = r.contains("infill_points") ? r["infill_points"].size() : 0;
+        if (r.contains("targets")) {
+          for (const auto& item : r["targets"].items()) {
+            nlohmann::json m = nlohmann::json::object();
+            for (const char* k : {"n", "mean", "sd", "rel_error", "rel_error_ci", "significant_miss"})
+              if (item.value().contains(k)) m[k] = item.value()[k];
+            d["targets"][item.key()] = m;
+          }
+        }
+        rounds.push_back(d);
+      }
+    }
+    digest["confirm_rounds"] = rounds;
+  }
   j["stages"] = digest;
   const double cpu = ev.calibration_cpu_seconds(), cpu_verify = ev.verification_cpu_seconds();
   j["cpu_seconds"] = cpu + cpu_verify;

@@ -171,6 +171,7 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
     s.confirm.batch = static_cast<int>(t->integer("batch", 0, 32, s.confirm.batch));
     s.confirm.max_evaluations = static_cast<int>(t->integer("max_evaluations", 1, 100000, s.confirm.max_evaluations));
     s.confirm.max_rounds = static_cast<int>(t->integer("max_rounds", 1, 100, s.confirm.max_rounds));
+    s.confirm.hold_unless_significant = t->boolean("hold_unless_significant", s.confirm.hold_unless_significant);
     t->check_unknown_keys();
   }
   if (auto t = root.table("verify")) {

@@ -72,6 +72,9 @@ struct ConfirmSettings {
   int batch = 2;                 // acquisition-chosen points added per infill round
   int max_evaluations = 46;      // DEM runs of the whole study (every replicate counts)
   int max_rounds = 6;
+  // Keep the point while no target's confidence interval excludes zero (more replicates there)
+  // instead of refitting and moving on every miss (confirm_stage.cpp).
+  bool hold_unless_significant = true;
 };
 
 struct StudyConfig {

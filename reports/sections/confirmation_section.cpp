@@ -41,12 +41,17 @@ void add_confirmation_section(const StudyData& d, Document& doc) {
   const double tol = as_number(c->value("tolerance", nlohmann::json()));
   s.paragraph("Each round runs " + format_value(c->value("replicates", nlohmann::json())) +
               " fresh DEM replicates (unused seeds) at the chosen point; converged when every target's relative error is within +-" +
-              format_percent(c->value("tolerance", nlohmann::json())).substr(1) + ". Budget " +
+              format_percent(c->value("tolerance", nlohmann::json())).substr(1) +
+              (c->value("hold_unless_significant", false)
+                   ? ". While no target's interval excludes zero the point is kept and the next round's replicates join its pool (n counts them all); "
+                     "a significant miss moves it (infill, refit, solve)"
+                   : "") +
+              ". Budget " +
               format_value(c->value("budget", nlohmann::json())) + " DEM runs; stopped: " + c->value("stop_reason", std::string("still running")) + ".");
   Table t{"confirmation_rounds", "Confirmation rounds", {"round"}, {}, {}};
   for (const auto& f : factors) t.columns.push_back(f);
   t.columns.insert(t.columns.end(), {"metric", "target", "n", "mean", "sd", "relative error", "CI low", "CI high", "confidence",
-                                     "within tolerance", "resolved", "infill points after"});
+                                     "within tolerance", "resolved", "infill points after", "next"});
   std::map<std::string, std::vector<std::vector<double>>> series;  // metric -> (round, e, lo, hi) in %
   for (const auto& round : c->value("rounds", nlohmann::json::array())) {
     const int r = round.value("round", 0);
@@ -60,7 +65,8 @@ void add_confirmation_section(const StudyData& d, Document& doc) {
                              format_percent(m.value("rel_error", nlohmann::json())), format_percent(ci.size() > 0 ? ci[0] : nlohmann::json()),
                              format_percent(ci.size() > 1 ? ci[1] : nlohmann::json()), format_value(m.value("confidence", nlohmann::json())),
                              format_value(m.value("within_tolerance", nlohmann::json())), format_value(m.value("resolved", nlohmann::json())),
-                             round.contains("infill_points") ? std::to_string(round["infill_points"].size()) : "0"});
+                             round.contains("infill_points") ? std::to_string(round["infill_points"].size()) : "0",
+                             round.value("next", std::string())});
       t.add_row(std::move(row));
       series[metric].push_back({static_cast<double>(r), 100.0 * as_number(m.value("rel_error", nlohmann::json())),
                                 100.0 * as_number(ci.size() > 0 ? ci[0] : nlohmann::json()),
