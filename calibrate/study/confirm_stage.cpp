@@ -64,7 +64,7 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std:
     const double q = gsl_cdf_tdist_Pinv(0.5 * (1.0 + s.confirm.confidence), static_cast<double>(v.size() - 1));
     const double half = q * sd / (std::sqrt(static_cast<double>(v.size())) * std::fabs(T));
     // Replicates that would put the whole interval inside +-tolerance if the mean sat on the
-    // target: n >= (t sd / (tol |T|))^2 (t from this round's degrees of freedom: an estimate).
+    // target: n >= (t sd / (tol |T|))^2 (t from the pool's degrees of freedom: an estimate).
     const double need = std::pow(q * sd / (s.confirm.tolerance * std::fabs(T)), 2.0);
     c["replicates_to_resolve_tolerance"] = static_cast<long>(std::ceil(std::max(need, 2.0)));
     c["cv"] = sd / std::fabs(mean);
@@ -81,7 +81,7 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std:
     out["targets"][s.targets[t].metric] = c;
   }
   out["converged"] = all_ok;
-  out["runs_at_point"] = pool.size();
+  out["runs_at_point"] = pool.size();  // DEM runs at this point, every target's
   nlohmann::json at = nlohmann::json::object();
   for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
   out["point"] = at;
