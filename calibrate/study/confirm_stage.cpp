@@ -9,7 +9,8 @@
 // - some target's interval excludes zero (a significant miss): the replicates join the surrogate
 //   data, `batch` infill points are chosen on the primary target's Gaussian process by the
 //   target-matching expected improvement (doe/surrogate/acquisition.hpp), run once each, the
-//   surrogates are refitted and solved again, and the new point is confirmed afresh;
+//   surrogates are refitted and solved again, and a new point is confirmed afresh (a solve that
+//   returns the same point keeps its pool);
 // - every interval holds zero (`hold_unless_significant`, the default): the data cannot tell the
 //   point from one on the target, so the point is kept and the next round adds `replicates`
 //   fresh runs to the same pool. Moving on such a round chases the run-to-run scatter: where the
@@ -140,8 +141,6 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
               ": the miss is within the scatter; the point is kept and confirmed with more replicates");
       continue;
     }
-    pool.clear();
-    rounds_pooled = 0;
     // Infill on the primary target's Gaussian process, conditioned on everything so far.
     if (s.confirm.batch > 0) {
       const int primary = primary_target(s);
@@ -170,7 +169,14 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
       ev.run(requests);
       report["rounds"].back()["infill_points"] = pts;
     }
+    const Eigen::VectorXd before = st.chosen;
     fit_and_solve(ev, st, store, "solve_round_" + std::to_string(round + 1));
+    // A new point starts a new pool; the same point (a solve that lands on the same corner of the
+    // box) keeps its replicates.
+    if (st.chosen != before) {
+      pool.clear();
+      rounds_pooled = 0;
+    }
   }
   store.set_stage("confirm", report);
   return report;
