@@ -26,7 +26,7 @@ struct TrendOptions {
   double sd_multiple = 2.0;
   int repeats = 3;                 // seeds seed, seed + 1, ... at every level
   int threads = 1;                 // OpenMP threads per simulation
-  int jobs = 1;                    // levels simulated at once (each its seeds in turn)
+  int jobs = 1;                    // runs (one level, one seed) simulated at once, one thread each
   std::uint64_t seed = 1;
   std::string out_dir;             // scenes write their CSV and pictures below it
 };

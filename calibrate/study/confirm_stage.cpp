@@ -34,14 +34,15 @@ namespace {
 
 // Runs `replicates` fresh runs at st.chosen, adds them to `pool` (the replicates at that point so
 // far) and states the pooled result.
-nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std::vector<EvaluationRecord>& pool,
-                          int rounds_pooled) {
+nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std::vector<EvaluationRecord>& pool) {
   const StudyConfig& s = ev.study();
   ev.announce("confirm round " + std::to_string(round), s.confirm.replicates * static_cast<int>(s.targets.size()));
   const auto fresh = ev.run(ev.plan("confirm", st.chosen, s.confirm.replicates));
   pool.insert(pool.end(), fresh.begin(), fresh.end());
   const auto& records = pool;
-  nlohmann::json out = {{"round", round}, {"rounds_pooled", rounds_pooled}, {"targets", nlohmann::json::object()}};
+  // Every round plans the same runs (failed ones are records too): the pool holds whole rounds.
+  const std::size_t per_round = static_cast<std::size_t>(s.confirm.replicates) * s.targets.size();
+  nlohmann::json out = {{"round", round}, {"rounds_pooled", pool.size() / per_round}, {"targets", nlohmann::json::object()}};
   bool all_ok = true;
   for (std::size_t t = 0; t < s.targets.size(); ++t) {
     std::vector<double> v;
@@ -94,10 +95,8 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std:
 // Whether a round's pooled result shows a significant miss on some target. A target with fewer
 // than two finished replicates has no interval: the point is moved (nothing supports it).
 bool significant_miss(const nlohmann::json& round) {
-  for (const auto& [metric, c] : round["targets"].items()) {
-    (void)metric;
+  for (const auto& c : round["targets"])
     if (!c.contains("significant_miss") || c["significant_miss"].get<bool>()) return true;
-  }
   return false;
 }
 
@@ -110,9 +109,8 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
                            {"budget", s.confirm.max_evaluations}, {"rounds", nlohmann::json::array()}};
   report["hold_unless_significant"] = s.confirm.hold_unless_significant;
   std::vector<EvaluationRecord> pool;  // every replicate at st.chosen so far
-  int rounds_pooled = 0;
   for (int round = 1;; ++round) {
-    report["rounds"].push_back(confirm_at(ev, st, round, pool, ++rounds_pooled));
+    report["rounds"].push_back(confirm_at(ev, st, round, pool));
     {
       const auto& last = report["rounds"].back();
       std::string line = "confirm round " + std::to_string(round) + ":";
@@ -173,10 +171,7 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
     fit_and_solve(ev, st, store, "solve_round_" + std::to_string(round + 1));
     // A new point starts a new pool; the same point (a solve that lands on the same corner of the
     // box) keeps its replicates.
-    if (st.chosen != before) {
-      pool.clear();
-      rounds_pooled = 0;
-    }
+    if (st.chosen != before) pool.clear();
   }
   store.set_stage("confirm", report);
   return report;
