@@ -11,8 +11,10 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   DrumSpec spec;
   fill_seed_spec(spec, cfg, ctx);
+  std::string drum_material = "the drum's material";
   if (auto rig = rig_table(root, "drum", cfg.fidelity)) {
-    spec.drum_material = cfg.phys.material(*rig, "drum_material", rig->string("drum_material"));
+    drum_material = rig->string("drum_material");
+    spec.drum_material = cfg.phys.material(*rig, "drum_material", drum_material);
     spec.diameter_m = rig->number("diameter_m", Range::closed(0.01, 10.0), spec.diameter_m);
     spec.depth_m = rig->number("depth_m", Range::closed(0.005, 10.0), spec.depth_m);
     spec.filling_rate = rig->number("filling_rate", Range::open(0.0, 0.9), spec.filling_rate);
@@ -38,6 +40,17 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   j["frames"] = frames;
   j["wall_layer_speed_ratio"] = r.wall_layer_speed_ratio;
   j["slipping_frames"] = r.slipping_frames;
+  if (r.slipping_frames > 0) {
+    // Said beside the index: such a frame's angle is the bed's angle of failure on the shell, which
+    // no speed changes (docs/scenes/drum.md, "Speed beyond the paper's range").
+    std::ostringstream w;
+    w << "the bed slipped on the shell in " << r.slipping_frames << " of " << r.frames.size()
+      << " frames (wall layer below 0.1 of the shell's speed): those angles are held by the "
+         "shell's friction, not by the bed's flow, and do not change with the speed; a shell with "
+         "more grip (the drum's lining: a higher static_friction between the seeds and "
+      << drum_material << ") carries the bed";
+    j["warnings"] = nlohmann::json::array({w.str()});
+  }
   j["speed_rpm"] = spec.speed_rpm;
   j["froude_number"] = r.froude_number;
   j["fill_height_m"] = r.fill_height_m;
