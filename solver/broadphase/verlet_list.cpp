@@ -124,8 +124,15 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
   group_start_ = std::move(gs);
   tangential_ = std::move(tangential);
   rolling_ = std::move(rolling);
+  mark_live();
   built_at_ = spheres.position_m;
   ++builds_;
+}
+
+void VerletList::mark_live() {
+  live_.resize(tangential_.size());
+  for (std::size_t k = 0; k < tangential_.size(); ++k)
+    live_[k] = tangential_[k].isZero(0.0) ? 0 : 1;
 }
 
 void VerletList::renumber(const std::vector<std::uint32_t>& new_of_old, const SphereState& spheres) {
@@ -160,6 +167,7 @@ void VerletList::renumber(const std::vector<std::uint32_t>& new_of_old, const Sp
     tangential_[k] = e[k].t;
     if (rolling) rolling_[k] = e[k].r;
   }
+  mark_live();
   built_at_.clear();  // forces the next skin check to rebuild
 }
 

@@ -32,6 +32,11 @@ class VerletList {
   const std::vector<std::uint32_t>& group_start() const { return group_start_; }
   std::vector<Vec3>& tangential() { return tangential_; }
   std::vector<Vec3>& rolling() { return rolling_; }
+  // Per pair: 1 when its tangential spring may be non-zero (it touched at the last force pass), 0
+  // when the spring is zero. The batched force pass keeps it (sim/contact_forces.cpp) and clears
+  // only the springs of pairs that came apart, instead of rewriting every listed pair's spring at
+  // every step; build() and renumber() set it from the springs they carry over.
+  std::vector<std::uint8_t>& live() { return live_; }
   std::size_t builds() const { return builds_; }
   double skin_m() const { return skin_m_; }
   // The skin check (done by the integrator's body pass, which already has every centre): the list
@@ -44,7 +49,9 @@ class VerletList {
   CellGrid grid_;
   std::vector<std::uint32_t> si_, sj_, group_start_;
   std::vector<Vec3> tangential_, rolling_;
+  std::vector<std::uint8_t> live_;
   std::vector<Vec3> built_at_;  // sphere centres at the last build
+  void mark_live();
   double skin_m_ = 0.0;
   std::size_t builds_ = 0;
 };

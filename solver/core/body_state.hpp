@@ -14,7 +14,8 @@ namespace seedcal {
 
 struct BodyState {
   std::vector<Vec3> position_m;            // centre of mass, world
-  std::vector<Quat> orientation;           // principal frame -> world
+  std::vector<Quat> orientation;           // principal frame -> world (kept as given for a lone
+                                           // sphere at the centre of mass: it moves nothing)
   std::vector<Vec3> velocity_m_s;          // centre-of-mass velocity, world
   std::vector<Vec3> angular_momentum;      // world frame, kg m2/s
   std::vector<Vec3> angular_velocity;      // world frame, rad/s (derived, cached)
@@ -22,7 +23,9 @@ struct BodyState {
   std::vector<double> inv_mass;
   std::vector<Vec3> principal_inertia;     // kg m2, body frame
   std::vector<Vec3> inv_inertia;           // 1 / principal_inertia
-  std::vector<std::uint8_t> isotropic;     // 1 when the three principal moments are equal
+  std::vector<std::uint8_t> isotropic;     // 1 when the three principal moments are equal,
+                                           // 2 when moreover the body is one sphere at its centre
+                                           // of mass (its step skips the orientation)
   std::vector<std::uint32_t> first_sphere; // spheres of body b: [first_sphere[b], first_sphere[b+1])
   std::vector<std::uint32_t> id;           // the id add_body() returned (bodies are re-sorted
                                            // in space for cache locality; ids stay)

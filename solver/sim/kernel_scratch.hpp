@@ -20,7 +20,6 @@ struct WallSide {
 // 64-byte aligned: the vectors' records of two threads never share a cache line.
 struct alignas(64) KernelScratch {
   std::vector<std::uint32_t> touch_k;     // a chunk's touching pairs, in list order
-  std::vector<std::uint8_t> touch_flag;   // 1 where a chunk's listed pair touches
   std::vector<double> touch_scale;        // HMNR: each touching pair's damping scale
   std::vector<double> ones;               // Hertz-Mindlin: 1.0 for every pair (never written)
   std::vector<WallContactIn> wall_in;     // touching sphere-wall contacts of a batch

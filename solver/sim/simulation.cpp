@@ -61,7 +61,9 @@ std::uint32_t Simulation::add_body(const BodyDef& def) {
   bodies_.velocity_m_s.push_back(def.velocity_m_s);
   const Vec3& I = def.principal_inertia_kg_m2;
   const bool iso = std::abs(I.x() - I.y()) <= 1e-12 * I.x() && std::abs(I.x() - I.z()) <= 1e-12 * I.x();
-  bodies_.isotropic.push_back(iso ? 1 : 0);
+  // 2: a lone sphere at the centre of mass, whose orientation moves nothing (first_half_step).
+  const bool lone = def.spheres.size() == 1 && def.spheres.front().offset_m.isZero(0.0);
+  bodies_.isotropic.push_back(iso ? (lone ? 2 : 1) : 0);
   bodies_.principal_inertia.push_back(I);
   bodies_.inv_inertia.push_back(I.cwiseInverse());
   bodies_.angular_momentum.push_back(
@@ -172,6 +174,41 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius,
   sv.body = static_cast<std::uint32_t>(b);
   sv.material = material;
 }
+
+// A lone sphere at its body's centre of mass: kick, drift, views and skin check as for any body,
+// the same operations in the same order, without the orientation (which moves no sphere of it) and
+// the offset: 64 bytes a body and step fewer through a bed larger than the cache (settled bed, one
+// thread: the body pass 0.99 -> 0.76 s per 5,000 steps, the same bits).
+[[gnu::always_inline]] inline void lone_sphere_step(
+    std::size_t b, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
+    Vec3* __restrict vel, Vec3* __restrict mom, Vec3* __restrict omega,
+    const Vec3* __restrict force, const Vec3* __restrict torque,
+    const double* __restrict inv_mass, const Vec3* __restrict inv_inertia, std::uint32_t i,
+    const double* __restrict radius, const std::uint16_t* __restrict material,
+    Vec3* __restrict centre, BodyView* __restrict bview, SphereView* __restrict sview,
+    const Vec3* __restrict ref, double& max_moved_sq, std::int64_t& bad) {
+  const Vec3 F = force[b], T = torque[b];
+  const double im = inv_mass[b], ii = inv_inertia[b].x();
+  Vec3 v_full = vel[b], L_full = mom[b];
+  if (kick) {
+    v_full = v_full + (hk * im) * F;
+    L_full = L_full + hk * T;
+  }
+  const Vec3 v = v_full + (h * im) * F;
+  const Vec3 L = L_full + h * T;
+  const Vec3 p = pos[b] + dt * v;
+  if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
+  vel[b] = v;
+  mom[b] = L;
+  pos[b] = p;
+  const Vec3 w = L * ii;
+  omega[b] = w;
+  fill_body_view(bview[b], v, w, Vec3(L + h * T) * ii, F, im, h);
+  centre[i] = p;
+  fill_sphere_view(sview[i], p, radius[i], p, b, material[i]);
+  if (ref) max_moved_sq = std::max(max_moved_sq, (p - ref[i]).squaredNorm());
+}
+
 }  // namespace
 
 void Simulation::update_sphere_positions() {
@@ -498,6 +535,12 @@ bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
         kick_drift_rotate(b, false, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
                           inv_inertia, bad);
     for (std::size_t b = b_begin; b < b_end; ++b) {
+      if (iso_flag[b] == 2) {
+        lone_sphere_step(b, kick, hk, h, dt, pos, vel, mom, omega, force, torque, inv_mass,
+                         inv_inertia, first[b], radius, material, centre, bview, sview, ref,
+                         max_moved_sq, bad);
+        continue;
+      }
       const bool iso = iso_flag[b] != 0;
       if (iso)  // a short rotation: no chain to overlap
         kick_drift_rotate(b, true, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
