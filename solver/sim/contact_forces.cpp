@@ -23,10 +23,11 @@ namespace seedcal {
 namespace {
 
 // The batch kernel's first pass over listed pairs [k_begin, k_end): writes the touching ones to
-// `touching` (in list order; returns how many), a 0/1 flag per pair to `flag`, and clears the
-// tangential spring (3 doubles per pair in `spring`) of every pair that does not touch.
-// Branch-free: about a third of the listed pairs do not touch, in no pattern a predictor could
-// learn. The far sphere of a pair a few pairs ahead is fetched early.
+// `touching` (in list order; returns how many) without a branch (about a third of the listed pairs
+// do not touch, in no pattern a predictor could learn), sets each pair's flag in `live` (the
+// list's VerletList::live() from k_begin on) to whether it touches, and clears the tangential
+// spring (3 doubles per pair in `spring`) of a pair that touched at the last pass and no longer
+// does. The far sphere of a pair a few pairs ahead is fetched early.
 std::size_t list_touching_pairs(const SphereView* __restrict SV, const std::uint32_t* __restrict SI,
                                 const std::uint32_t* __restrict SJ, std::uint32_t k_begin,
                                 std::uint32_t k_end, std::uint32_t* __restrict touching,
