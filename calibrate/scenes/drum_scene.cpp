@@ -22,6 +22,10 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
     spec.speed_rpm = rig->number("speed_rpm", Range::closed(0.01, 1000.0), spec.speed_rpm);
     if (rig->has("frame_times_s")) spec.frame_times_s = rig->numbers("frame_times_s", Range::closed(0.0, 1000.0), 1, 100);
     spec.fit_width_fraction = rig->number("fit_width_fraction", Range::left_open(0.0, 1.0), spec.fit_width_fraction);
+    spec.shell_facets = static_cast<int>(rig->integer("shell_facets", 0, 720, 0));
+    if (spec.shell_facets == 1 || spec.shell_facets == 2)
+      rig->error("shell_facets", "is " + std::to_string(spec.shell_facets) +
+                                     "; allowed: 0 (a smooth shell) or 3 to 720 facets");
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();
@@ -52,6 +56,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
     j["warnings"] = nlohmann::json::array({w.str()});
   }
   j["speed_rpm"] = spec.speed_rpm;
+  j["shell_facets"] = spec.shell_facets;
   j["froude_number"] = r.froude_number;
   j["fill_height_m"] = r.fill_height_m;
   j["seeds"] = r.seeds;

@@ -6,6 +6,7 @@
 
 #include "solver/scenes/settle.hpp"
 #include "solver/walls/cylinder_shape.hpp"
+#include "solver/walls/mesh_shape.hpp"
 #include "solver/walls/motion_laws.hpp"
 
 namespace seedcal {
@@ -60,11 +61,33 @@ DrumResult run_drum(const DrumSpec& spec) {
   // origin; it turns about +y.
   Wall drum;
   drum.name = "drum";
-  drum.shape = std::make_shared<CylinderShape>(R, D, true, true, true);
   drum.material = spec.drum_material;
   drum.pose.orientation = Quat(Eigen::AngleAxisd(-0.5 * std::numbers::pi, Vec3::UnitX()));  // z -> y
   drum.pose.origin_m = Vec3(0.0, -0.5 * D, 0.0);
-  const std::size_t drum_index = sim.add_wall(drum);
+  std::vector<std::size_t> turning;
+  if (spec.shell_facets >= 3) {
+    // A faceted shell: N rectangles (two triangles each) between the vertices R (cos t_k, sin t_k)
+    // at z = 0 and z = D, in the drum's frame; the end faces stay discs, of a cylinder 5 % wider
+    // whose lateral surface no seed inside the facets reaches.
+    const int n = spec.shell_facets;
+    std::vector<Triangle> tris;
+    for (int k = 0; k < n; ++k) {
+      const double a0 = 2.0 * std::numbers::pi * k / n, a1 = 2.0 * std::numbers::pi * (k + 1) / n;
+      const Vec3 p0(R * std::cos(a0), R * std::sin(a0), 0.0), p1(R * std::cos(a1), R * std::sin(a1), 0.0);
+      const Vec3 q0 = p0 + Vec3(0.0, 0.0, D), q1 = p1 + Vec3(0.0, 0.0, D);
+      tris.push_back({p0, p1, q1});
+      tris.push_back({p0, q1, q0});
+    }
+    Wall shell = drum;
+    shell.name = "drum shell";
+    shell.shape = std::make_shared<TriangleMeshShape>(tris, std::to_string(n) + " facets");
+    drum.name = "drum ends";
+    drum.shape = std::make_shared<CylinderShape>(1.05 * R, D, true, true, true);
+    turning.push_back(sim.add_wall(shell));
+  } else {
+    drum.shape = std::make_shared<CylinderShape>(R, D, true, true, true);
+  }
+  turning.push_back(sim.add_wall(drum));
 
   FactorySpec fs;
   fs.body = spec.seeds.body;
@@ -79,7 +102,6 @@ DrumResult run_drum(const DrumSpec& spec) {
   res.seeds = sim.bodies().size();
 
   const double t0 = sim.time_s();
-  sim.walls()[drum_index].motion = std::make_shared<Rotation>(Vec3::UnitY(), Vec3::Zero(), w, sim.walls()[drum_index].pose);
   // Rotation laws take the absolute time; shift so the turn starts now.
   struct Delayed final : WallMotion {
     std::shared_ptr<WallMotion> inner;
@@ -87,10 +109,12 @@ DrumResult run_drum(const DrumSpec& spec) {
     void advance(Wall& wl, double t, double h) override { inner->advance(wl, t - start, h); }
     double max_speed_m_s(double e) const override { return inner->max_speed_m_s(e); }
   };
-  auto delayed = std::make_shared<Delayed>();
-  delayed->inner = sim.walls()[drum_index].motion;
-  delayed->start = t0;
-  sim.walls()[drum_index].motion = delayed;
+  for (std::size_t wi : turning) {
+    auto delayed = std::make_shared<Delayed>();
+    delayed->inner = std::make_shared<Rotation>(Vec3::UnitY(), Vec3::Zero(), w, sim.walls()[wi].pose);
+    delayed->start = t0;
+    sim.walls()[wi].motion = delayed;
+  }
 
   double d = 0.0;
   for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));

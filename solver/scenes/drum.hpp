@@ -29,6 +29,10 @@ struct DrumSpec {
   double speed_rpm = 5.0;
   std::vector<double> frame_times_s = {3.0, 4.0, 5.0};  // after the drum starts turning
   double fit_width_fraction = 0.6;
+  // 0: a smooth circular shell. N >= 3: the shell is a prism of N flat facets inscribed in the
+  // circle (a drum made of plates, or a CAD drum as a triangle mesh), whose edges give the seeds a
+  // geometric grip the smooth shell does not.
+  int shell_facets = 0;
   int threads = 1;
   std::uint64_t seed = 0;
   FrameObserver observer;  // frames for a trajectory (optional)

@@ -1,4 +1,5 @@
-// End-to-end: `seedcal run` on impact scenes: exit codes, metrics keys, --set, bad input.
+// End-to-end: `seedcal run` on impact scenes: exit codes, metrics keys, --set, bad input (and a drum
+// rig key's bad input, refused before anything runs).
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -63,6 +64,18 @@ TEST(RunImpactCli, BadInputNamesFileLineKeyValueAndRange) {
   EXPECT_NE(r.output.find("materials.glass.poisson_ratio = 0.7: must be in [0, 0.5]"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("did you mean \"restitution\""), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("interaction[0].restitution is required"), std::string::npos) << r.output;
+}
+
+TEST(RunImpactCli, DrumShellFacetsOutOfRangeExitTwo) {
+  const std::string drum = testing::source_dir() + "/data/scenes/jinong1/drum.toml";
+  for (const char* bad : {"2", "721", "12.5"}) {
+    const auto r = run_cli("run " + drum + " --set fidelity=quick --set drum.quick.shell_facets=" + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("drum.toml"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("drum.quick.shell_facets"), std::string::npos) << r.output;
+  }
+  const auto r = run_cli("run " + drum + " --set fidelity=quick --set drum.quick.shell_facets=2");
+  EXPECT_NE(r.output.find("allowed: 0 (a smooth shell) or 3 to 720 facets"), std::string::npos) << r.output;
 }
 
 TEST(RunImpactCli, MissingFileAndUnknownKindExitTwo) {
