@@ -129,14 +129,14 @@ inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const
   return offset.isZero(0.0) ? body_position : Vec3(body_position + rotation * offset);
 }
 
-// Body b's part of a step: the last step's second half kick when pending (the same operations as
-// finish_kick()), then velocity Verlet's first half: kick with the same forces, drift, rotate.
-// A non-finite position, velocity or momentum lowers `bad` to b.
-[[gnu::always_inline]] inline void kick_drift_rotate(
-    std::size_t b, bool iso, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
-    Quat* __restrict rot, Vec3* __restrict vel, Vec3* __restrict mom, const Vec3* __restrict force,
-    const Vec3* __restrict torque, const double* __restrict inv_mass,
-    const Vec3* __restrict inv_inertia, std::int64_t& bad) {
+// Body b's translation and momentum for a step: the last step's second half kick when pending
+// (the same operations as finish_kick()), then velocity Verlet's first half: kick with the same
+// forces, drift. Stores and returns the new momentum; a non-finite position, velocity or momentum
+// lowers `bad` to b.
+[[gnu::always_inline]] inline Vec3 kick_drift(
+    std::size_t b, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
+    Vec3* __restrict vel, Vec3* __restrict mom, const Vec3* __restrict force,
+    const Vec3* __restrict torque, const double* __restrict inv_mass, std::int64_t& bad) {
   Vec3 v_full = vel[b], L_full = mom[b];
   if (kick) {
     v_full = v_full + (hk * inv_mass[b]) * force[b];
@@ -146,11 +146,21 @@ inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const
   const Vec3 L = L_full + h * torque[b];
   const Vec3 p = pos[b] + dt * v;
   if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
-  Quat q = rot[b];
-  free_rotation_step(q, L, inv_inertia[b], iso, dt);
   vel[b] = v;
   mom[b] = L;
   pos[b] = p;
+  return L;
+}
+
+// kick_drift(), then the rotation over the step.
+[[gnu::always_inline]] inline void kick_drift_rotate(
+    std::size_t b, bool iso, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
+    Quat* __restrict rot, Vec3* __restrict vel, Vec3* __restrict mom, const Vec3* __restrict force,
+    const Vec3* __restrict torque, const double* __restrict inv_mass,
+    const Vec3* __restrict inv_inertia, std::int64_t& bad) {
+  const Vec3 L = kick_drift(b, kick, hk, h, dt, pos, vel, mom, force, torque, inv_mass, bad);
+  Quat q = rot[b];
+  free_rotation_step(q, L, inv_inertia[b], iso, dt);
   rot[b] = q;
 }
 
@@ -175,7 +185,7 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius,
   sv.material = material;
 }
 
-// A lone sphere at its body's centre of mass: kick, drift, views and skin check as for any body,
+// A lone sphere at its body's centre of mass: kick_drift(), views and skin check as for any body,
 // the same operations in the same order, without the orientation (which moves no sphere of it) and
 // the offset: 64 bytes a body and step fewer through a bed larger than the cache (settled bed, one
 // thread: the body pass 0.99 -> 0.76 s per 5,000 steps, the same bits).
@@ -187,23 +197,12 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius,
     const double* __restrict radius, const std::uint16_t* __restrict material,
     Vec3* __restrict centre, BodyView* __restrict bview, SphereView* __restrict sview,
     const Vec3* __restrict ref, double& max_moved_sq, std::int64_t& bad) {
-  const Vec3 F = force[b], T = torque[b];
-  const double im = inv_mass[b], ii = inv_inertia[b].x();
-  Vec3 v_full = vel[b], L_full = mom[b];
-  if (kick) {
-    v_full = v_full + (hk * im) * F;
-    L_full = L_full + hk * T;
-  }
-  const Vec3 v = v_full + (h * im) * F;
-  const Vec3 L = L_full + h * T;
-  const Vec3 p = pos[b] + dt * v;
-  if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
-  vel[b] = v;
-  mom[b] = L;
-  pos[b] = p;
+  const Vec3 L = kick_drift(b, kick, hk, h, dt, pos, vel, mom, force, torque, inv_mass, bad);
+  const Vec3 v = vel[b], p = pos[b], T = torque[b];
+  const double ii = inv_inertia[b].x();
   const Vec3 w = L * ii;
   omega[b] = w;
-  fill_body_view(bview[b], v, w, Vec3(L + h * T) * ii, F, im, h);
+  fill_body_view(bview[b], v, w, Vec3(L + h * T) * ii, force[b], inv_mass[b], h);
   centre[i] = p;
   fill_sphere_view(sview[i], p, radius[i], p, b, material[i]);
   if (ref) max_moved_sq = std::max(max_moved_sq, (p - ref[i]).squaredNorm());
