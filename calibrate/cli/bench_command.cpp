@@ -18,6 +18,7 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
     std::string name;
     std::string clump_file = "data/bench/clump9.txt";
     std::int64_t settle_steps = -1, timed_steps = 20000;
+    int simd_lanes = 8;
   };
   auto a = std::make_shared<Args>();
   CLI::App* sub = app.add_subcommand("bench", "solver throughput on the peer-benchmark scenes");
@@ -29,6 +30,10 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
       ->check(CLI::Range(std::int64_t{0}, std::int64_t{10000000}));
   sub->add_option("--timed-steps", a->timed_steps, "timed steps at 1e-6 s (default 20000)")
       ->check(CLI::Range(std::int64_t{1}, std::int64_t{10000000}));
+  sub->add_option("--simd-lanes", a->simd_lanes,
+                  "widest contact kernel to use: 8 (AVX-512F), 4 (AVX2) or 1; the CPU may allow "
+                  "fewer (default 8; every width gives the same bits)")
+      ->check(CLI::IsMember({1, 4, 8}));
   add_common_options(*sub, g);
   sub->callback([a, &g] {
     BenchSpec spec;
@@ -47,6 +52,7 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
     spec.timed_steps = static_cast<std::uint64_t>(a->timed_steps);
     spec.threads = g.resolved_threads();
     spec.seed = g.seed;
+    spec.simd_lanes = a->simd_lanes;
     std::cout << "seedcal bench " << spec.name << ": " << spec.settle_steps << " settling steps, "
               << spec.timed_steps << " timed steps, " << spec.threads << " thread(s)" << std::endl;
     const BenchResult r = run_bench(spec);
@@ -60,6 +66,7 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
                      {"contacts_per_sphere", r.contacts_per_sphere},
                      {"neighbour_builds", r.neighbour_builds},
                      {"threads", spec.threads},
+                     {"kernel_lanes", r.kernel_lanes},
                      {"profile_s", {{"integrate", r.integrate_s}, {"neighbour", r.neighbour_s},
                                     {"contact", r.contact_s}, {"reduce", r.reduce_s}}},
                      {"contact_model", "hertz_mindlin + cdt (own spin)"},

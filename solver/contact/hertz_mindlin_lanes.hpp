@@ -1,17 +1,18 @@
 #pragma once
 // Hertz-Mindlin (no slip) written once for any lane type: `double` (one contact) or a GCC vector
-// of doubles (several contacts at once, sim/pair_batch_avx2.cpp). The formulas, their sources and
-// the choice of velocities are documented in contact/hertz_mindlin.hpp, whose scalar
-// hertz_mindlin() calls this code; the sphere-sphere kernel calls it with four lanes.
+// of doubles (several contacts at once, sim/pair_batch_avx2.cpp and sim/pair_batch_avx512.cpp).
+// The formulas, their sources and the choice of velocities are documented in
+// contact/hertz_mindlin.hpp, whose scalar hertz_mindlin() calls this code; the sphere-sphere and
+// sphere-wall kernels call it with four or eight lanes.
 //
 // Lane types. `O` supplies the lane type O::T and sqrt, abs, splat and any-of-mask; the arithmetic,
 // comparisons and `mask ? a : b` are the language's own (GCC and Clang give vector types the same
 // operators as double). Every lane is computed with the same operations in the same order, and no
 // operation is fused (the lane translation units are built without FMA contraction), so one
-// contact gives the same bits on one lane as on four.
+// contact gives the same bits on one lane as on four or eight.
 //
-// No Eigen here: the vector translation unit is compiled for AVX2 and must not emit copies of
-// library inline functions that a baseline translation unit might link to.
+// No Eigen here: the vector translation units are compiled for AVX2 and AVX-512F and must not
+// emit copies of library inline functions that a baseline translation unit might link to.
 
 namespace seedcal::lanes {
 

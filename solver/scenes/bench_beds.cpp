@@ -4,6 +4,7 @@
 #include <cmath>
 #include <random>
 
+#include "solver/sim/pair_batch.hpp"
 #include "solver/sim/particle_factory.hpp"
 #include "solver/sim/simulation.hpp"
 
@@ -48,12 +49,14 @@ BenchResult run_bench(const BenchSpec& spec) {
   opt.profile = true;  // four clock reads per step: negligible against a 10,000-sphere step
   opt.threads = spec.threads;
   opt.seed = spec.seed;
+  opt.simd_lanes = spec.simd_lanes;
   Simulation sim(table, opt);
   BodyDef tpl = clumps ? clump_body(spec.clump, seed.density_kg_m3, 0) : sphere_body(0.002, seed.density_kg_m3, 0);
   const Vec3 lo = clumps ? Vec3(0.006, 0.006, 0.006) : Vec3(0.0025, 0.0025, 0.0025);
   const Vec3 hi = clumps ? Vec3(0.094, 0.094, 0.294) : Vec3(0.0975, 0.0975, 0.1975);
   const std::size_t want = clumps ? 1000 : 10000;
   BenchResult res;
+  res.kernel_lanes = pair_batch_lanes_used(spec.simd_lanes);
   // As the decks' insert/pack: random non-overlapping poses, all inside the region.
   FactorySpec fs;
   fs.body = tpl;

@@ -26,6 +26,7 @@ struct BenchSpec {
   std::uint64_t timed_steps = 20000;
   int threads = 1;
   std::uint64_t seed = 1;
+  int simd_lanes = 8;            // widest contact kernel allowed (SimulationOptions::simd_lanes)
 };
 
 struct BenchResult {
@@ -36,6 +37,7 @@ struct BenchResult {
   double sphere_steps_per_second = 0.0;
   double contacts_per_sphere = 0.0;  // (2 sphere-sphere + sphere-wall contacts) / spheres
   std::size_t neighbour_builds = 0;  // during the timed steps
+  int kernel_lanes = 1;              // lanes of the contact kernel that ran (1, 4 or 8)
   double kinetic_energy_j = 0.0;
   std::string failure;           // empty when the run completed
   double integrate_s = 0, neighbour_s = 0, contact_s = 0, reduce_s = 0;  // timed-step profile

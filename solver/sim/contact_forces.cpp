@@ -144,14 +144,14 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     batch.clip_attractive = clip;
     batch.cdt = RM == RollingModel::cdt;
     batch.cdt_lever_from_centre_of_mass = lever_com;
-    batch_fn = choose_pair_batch(s.options_.simd);
+    batch_fn = choose_pair_batch(s.options_.simd_lanes);
     wall_args.bodies = batch.bodies;
     wall_args.pair_constants = batch.pair_constants;
     wall_args.tangential_m = wtang.empty() ? nullptr : wtang.data()->data();
     wall_args.dt_s = dt;
     wall_args.clip_attractive = clip;
     wall_args.cdt = batch.cdt;
-    wall_fn = choose_wall_batch(s.options_.simd);
+    wall_fn = choose_wall_batch(s.options_.simd_lanes);
   }
 
   // Each thread takes the sphere pairs and then the wall pairs of one range of bodies, the ranges

@@ -1,9 +1,10 @@
 #pragma once
 // The sphere-sphere force kernel for a batch of touching pairs, and its sphere-wall twin, (Hertz-Mindlin with or without
-// HMNR, with no rolling friction or with CDT): the same code on one lane (pair_batch_scalar.cpp, any x86-64)
-// or four (pair_batch_avx2.cpp, AVX2), chosen once per run. Both give the same bits: the lanes run
-// the same operations in the same order without fused multiply-adds, and the results are added to
-// the bodies in the order of the batch (tested in tests/physics/determinism_test.cpp).
+// HMNR, with no rolling friction or with CDT): the same code on one lane (pair_batch_scalar.cpp, any x86-64),
+// four (pair_batch_avx2.cpp, AVX2) or eight (pair_batch_avx512.cpp, AVX-512F), chosen once per
+// run. All give the same bits: the lanes run the same operations in the same order without fused
+// multiply-adds, and the results are added to the bodies in the order of the batch (tested in
+// tests/physics/determinism_test.cpp).
 //
 // This header holds only plain types: the AVX2 translation unit must not include Eigen or other
 // library headers whose inline functions it would compile for AVX2 (sim/contact_view.hpp checks
@@ -97,7 +98,9 @@ void wall_batch_scalar(const WallBatchArgs& args, const WallContactIn* in, std::
                        WallContactOut* out);
 void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
                      WallContactOut* out);
-WallBatchFn choose_wall_batch(bool allow_simd);
+void wall_batch_avx512(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
+                       WallContactOut* out);
+WallBatchFn choose_wall_batch(int max_lanes);
 
 // Forces of the touching pairs pairs[0..n) of the neighbour list (every one must touch), with
 // damping scale scale[i] (1, or HMNR's 1/sqrt(contacts)); added to the accumulators in that order.
@@ -109,9 +112,16 @@ void pair_batch_scalar(const PairBatchArgs& args, const std::uint32_t* pairs, co
 // Four lanes; only where pair_batch_avx2_usable().
 void pair_batch_avx2(const PairBatchArgs& args, const std::uint32_t* pairs, const double* scale,
                      std::size_t n, PairBatchStats& stats);
+// Eight lanes; only where pair_batch_avx512_usable().
+void pair_batch_avx512(const PairBatchArgs& args, const std::uint32_t* pairs, const double* scale,
+                       std::size_t n, PairBatchStats& stats);
 // The AVX2 kernel was built and this CPU runs AVX2.
 bool pair_batch_avx2_usable();
-// The four-lane kernel where usable and wanted, else the one-lane one.
-PairBatchFn choose_pair_batch(bool allow_simd);
+// The AVX-512 kernel was built and this CPU runs AVX-512F.
+bool pair_batch_avx512_usable();
+// The lanes of the widest kernel this CPU runs, at most max_lanes (1, 4 or 8).
+int pair_batch_lanes_used(int max_lanes);
+// That kernel.
+PairBatchFn choose_pair_batch(int max_lanes);
 
 }  // namespace seedcal

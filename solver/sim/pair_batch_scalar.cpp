@@ -22,12 +22,34 @@ bool pair_batch_avx2_usable() {
 #endif
 }
 
-PairBatchFn choose_pair_batch(bool allow_simd) {
-  return allow_simd && pair_batch_avx2_usable() ? &pair_batch_avx2 : &pair_batch_scalar;
+bool pair_batch_avx512_usable() {
+#if defined(SEEDCAL_PAIR_BATCH_AVX512) && (defined(__x86_64__) || defined(__i386__))
+  return __builtin_cpu_supports("avx512f");
+#else
+  return false;
+#endif
 }
 
-WallBatchFn choose_wall_batch(bool allow_simd) {
-  return allow_simd && pair_batch_avx2_usable() ? &wall_batch_avx2 : &wall_batch_scalar;
+int pair_batch_lanes_used(int max_lanes) {
+  if (max_lanes >= 8 && pair_batch_avx512_usable()) return 8;
+  if (max_lanes >= 4 && pair_batch_avx2_usable()) return 4;
+  return 1;
+}
+
+PairBatchFn choose_pair_batch(int max_lanes) {
+  switch (pair_batch_lanes_used(max_lanes)) {
+    case 8: return &pair_batch_avx512;
+    case 4: return &pair_batch_avx2;
+    default: return &pair_batch_scalar;
+  }
+}
+
+WallBatchFn choose_wall_batch(int max_lanes) {
+  switch (pair_batch_lanes_used(max_lanes)) {
+    case 8: return &wall_batch_avx512;
+    case 4: return &wall_batch_avx2;
+    default: return &wall_batch_scalar;
+  }
 }
 
 }  // namespace seedcal

@@ -48,9 +48,10 @@ struct SimulationOptions {
   // neighbours are near in memory (0: never). Worlds under 512 bodies are never sorted.
   std::uint64_t sort_interval_steps = 1000;
   std::uint64_t seed = 0;
-  // Compute sphere-sphere contacts four at a time with AVX2 where the CPU has it (sim/
-  // pair_batch.hpp); the results are the same bits either way.
-  bool simd = true;
+  // Compute sphere-sphere and sphere-wall contacts this many at a time at most: 8 (AVX-512F), 4
+  // (AVX2) or 1, the widest the CPU runs (sim/pair_batch.hpp); the results are the same bits at
+  // any width.
+  int simd_lanes = 8;
   FrameObserver observer;
 };
 

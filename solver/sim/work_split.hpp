@@ -20,7 +20,7 @@
 namespace seedcal {
 
 // A listed wall pair costs a shape query and, when it touches, a scalar contact; a listed sphere
-// pair a distance test and, a third to a half of the time, a contact in the four-lane kernel.
+// pair a distance test and, a third to a half of the time, a contact in the batch kernel.
 // Measured per listed pair, one thread: 25 against 8.4 ns on the clump bed, 53 against 14 ns on
 // the settled bed (tests/bench/README.md).
 inline constexpr double kWallPairWeight = 3.0;

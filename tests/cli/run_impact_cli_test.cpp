@@ -87,6 +87,30 @@ TEST(RunImpactCli, MissingFileAndUnknownKindExitTwo) {
   EXPECT_NE(r.output.find("did you mean \"impact\""), std::string::npos) << r.output;
 }
 
+// `seedcal bench` prints its JSON on the last line, with the contact kernel's width; every width
+// gives the same bed (the kernels give the same bits), and a width that is no kernel's exits 2.
+TEST(RunImpactCli, BenchReportsKernelLanesAndTheSameBedAtEveryWidth) {
+  std::vector<nlohmann::json> runs;
+  for (const char* lanes : {"1", "8"}) {
+    const auto r = run_cli(std::string("bench settled-bed --settle-steps 300 --timed-steps 30 "
+                                       "--threads 1 --simd-lanes ") + lanes);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::string out = r.output.substr(0, r.output.find_last_not_of('\n') + 1);
+    const auto j = nlohmann::json::parse(out.substr(out.find_last_of('\n') + 1));
+    for (const char* k : {"sphere_steps_per_second", "spheres", "steps", "wall_seconds",
+                          "contacts_per_sphere", "kernel_lanes", "seedcal_version", "seed"})
+      EXPECT_TRUE(j.contains(k)) << k;
+    EXPECT_EQ(j["spheres"], 10000);
+    EXPECT_EQ(j["steps"], 30);
+    runs.push_back(j);
+  }
+  EXPECT_EQ(runs[0]["kernel_lanes"], 1);
+  const int wide = runs[1]["kernel_lanes"].get<int>();
+  EXPECT_TRUE(wide == 1 || wide == 4 || wide == 8) << wide;
+  EXPECT_EQ(runs[0]["contacts_per_sphere"], runs[1]["contacts_per_sphere"]);
+  EXPECT_EQ(run_cli("bench settled-bed --simd-lanes 3").exit_code, 2);
+}
+
 TEST(RunImpactCli, HelpOnEveryLevel) {
   EXPECT_EQ(run_cli("--help").exit_code, 0);
   EXPECT_EQ(run_cli("run --help").exit_code, 0);

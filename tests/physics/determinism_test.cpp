@@ -12,7 +12,7 @@
 namespace seedcal {
 namespace {
 
-std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps, bool simd = true,
+std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps, int simd_lanes = 8,
                           NormalModel normal = NormalModel::hertz_mindlin,
                           RollingModel rolling = RollingModel::cdt) {
   testing::MaterialSpec m;
@@ -28,7 +28,7 @@ std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps, bool simd 
   opt.dt_s = 2e-6;
   opt.contact.normal = normal;
   opt.contact.rolling = rolling;
-  opt.simd = simd;
+  opt.simd_lanes = simd_lanes;
   Simulation sim(testing::make_table(m), opt);
   testing::add_random_bed(sim, testing::BedSpec{}, m.density_kg_m3);
   EXPECT_TRUE(sim.run(static_cast<std::uint64_t>(steps))) << sim.failure().message;
@@ -58,24 +58,31 @@ TEST(Determinism, OneAndTwoThreadsAgree) {
   EXPECT_LT(worst, 1e-9);
 }
 
-// The sphere-sphere kernel on four AVX2 lanes and on one lane gives the same bits
-// (sim/pair_batch.hpp): settling, sliding and resting contacts, with and without HMNR and CDT.
-TEST(Determinism, FourLaneAndOneLaneKernelsAreBitIdentical) {
-  if (!pair_batch_avx2_usable()) GTEST_SKIP() << "this CPU has no AVX2: only the one-lane kernel runs";
+// The sphere-sphere and sphere-wall kernels on eight (AVX-512F) and four (AVX2) lanes give the
+// same bits as on one lane (sim/pair_batch.hpp): settling, sliding and resting contacts, with and
+// without HMNR and CDT. A width the CPU does not run is skipped.
+TEST(Determinism, WideAndOneLaneKernelsAreBitIdentical) {
   struct Case {
     NormalModel normal;
     RollingModel rolling;
     int threads;
   };
-  for (const Case c : {Case{NormalModel::hertz_mindlin, RollingModel::cdt, 1},
-                       Case{NormalModel::hmnr, RollingModel::none, 1},
-                       Case{NormalModel::hertz_mindlin, RollingModel::cdt, 2}}) {
-    const auto a = run_bed(c.threads, 7, 3000, true, c.normal, c.rolling);
-    const auto b = run_bed(c.threads, 7, 3000, false, c.normal, c.rolling);
-    ASSERT_EQ(a.size(), b.size());
-    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)), 0)
-        << to_string(c.normal) << " + " << to_string(c.rolling) << ", " << c.threads << " threads";
+  int widths_run = 0;
+  for (const int lanes : {4, 8}) {
+    if (pair_batch_lanes_used(lanes) != lanes) continue;
+    ++widths_run;
+    for (const Case c : {Case{NormalModel::hertz_mindlin, RollingModel::cdt, 1},
+                         Case{NormalModel::hmnr, RollingModel::none, 1},
+                         Case{NormalModel::hertz_mindlin, RollingModel::cdt, 2}}) {
+      const auto a = run_bed(c.threads, 7, 3000, lanes, c.normal, c.rolling);
+      const auto b = run_bed(c.threads, 7, 3000, 1, c.normal, c.rolling);
+      ASSERT_EQ(a.size(), b.size());
+      EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)), 0)
+          << lanes << " lanes, " << to_string(c.normal) << " + " << to_string(c.rolling) << ", "
+          << c.threads << " threads";
+    }
   }
+  if (widths_run == 0) GTEST_SKIP() << "this CPU has neither AVX2 nor AVX-512F: only the one-lane kernel runs";
 }
 
 TEST(Determinism, DifferentSeedsDiffer) {
