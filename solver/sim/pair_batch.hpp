@@ -6,9 +6,9 @@
 // multiply-adds, and the results are added to the bodies in the order of the batch (tested in
 // tests/physics/determinism_test.cpp).
 //
-// This header holds only plain types: the AVX2 translation unit must not include Eigen or other
-// library headers whose inline functions it would compile for AVX2 (sim/contact_view.hpp checks
-// the layouts below against the real records).
+// This header holds only plain types: the AVX2 and AVX-512 translation units must not include Eigen
+// or other library headers whose inline functions they would compile for their instruction set
+// (sim/contact_view.hpp checks the layouts below against the real records).
 #include <cstddef>
 #include <cstdint>
 

@@ -4,7 +4,7 @@
 #include "solver/sim/pair_batch_lanes.hpp"
 
 #ifdef __AVX2__
-#include <immintrin.h>
+#include "solver/sim/pair_batch_transpose.hpp"
 
 namespace seedcal {
 namespace {
@@ -26,15 +26,6 @@ struct Avx2Ops {
     return _mm256_set_pd(p[3][offset], p[2][offset], p[1][offset], p[0][offset]);
   }
   [[gnu::always_inline]] static void store(double* out, T x) { _mm256_store_pd(out, x); }
-  // 4x4 transpose: rows become columns.
-  [[gnu::always_inline]] static void transpose4(T& a, T& b, T& c, T& d) {
-    const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b);
-    const __m256d t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
-    a = _mm256_permute2f128_pd(t0, t2, 0x20);
-    b = _mm256_permute2f128_pd(t1, t3, 0x20);
-    c = _mm256_permute2f128_pd(t0, t2, 0x31);
-    d = _mm256_permute2f128_pd(t1, t3, 0x31);
-  }
   // Fields offset .. offset+3 of each lane's record, one vector per field.
   [[gnu::always_inline]] static void load4(const double* const* p, int offset, T& a, T& b, T& c,
                                            T& d) {

@@ -6,23 +6,13 @@
 #include "solver/sim/pair_batch_lanes.hpp"
 
 #ifdef __AVX512F__
-#include <immintrin.h>
+#include "solver/sim/pair_batch_transpose.hpp"
 
 namespace seedcal {
 namespace {
 
 // Eight doubles; __m512d itself carries may_alias, which a template argument would drop.
 typedef double V8d __attribute__((vector_size(64)));
-
-// 4x4 transpose of four-double rows (the AVX2 kernel's).
-[[gnu::always_inline]] inline void transpose4(__m256d& a, __m256d& b, __m256d& c, __m256d& d) {
-  const __m256d t0 = _mm256_unpacklo_pd(a, b), t1 = _mm256_unpackhi_pd(a, b);
-  const __m256d t2 = _mm256_unpacklo_pd(c, d), t3 = _mm256_unpackhi_pd(c, d);
-  a = _mm256_permute2f128_pd(t0, t2, 0x20);
-  b = _mm256_permute2f128_pd(t1, t3, 0x20);
-  c = _mm256_permute2f128_pd(t0, t2, 0x31);
-  d = _mm256_permute2f128_pd(t1, t3, 0x31);
-}
 
 // The halves of eight lanes. Written as shuffles: GCC 12's _mm512_insertf64x4 and
 // _mm512_sqrt_pd start from _mm512_undefined_pd(), which -Wmaybe-uninitialized reports.

@@ -36,20 +36,21 @@ int pair_batch_lanes_used(int max_lanes) {
   return 1;
 }
 
+namespace {
+// The kernel of the widest width this CPU runs, at most max_lanes.
+template <class Fn>
+Fn widest(int max_lanes, Fn eight, Fn four, Fn one) {
+  const int lanes = pair_batch_lanes_used(max_lanes);
+  return lanes == 8 ? eight : lanes == 4 ? four : one;
+}
+}  // namespace
+
 PairBatchFn choose_pair_batch(int max_lanes) {
-  switch (pair_batch_lanes_used(max_lanes)) {
-    case 8: return &pair_batch_avx512;
-    case 4: return &pair_batch_avx2;
-    default: return &pair_batch_scalar;
-  }
+  return widest<PairBatchFn>(max_lanes, &pair_batch_avx512, &pair_batch_avx2, &pair_batch_scalar);
 }
 
 WallBatchFn choose_wall_batch(int max_lanes) {
-  switch (pair_batch_lanes_used(max_lanes)) {
-    case 8: return &wall_batch_avx512;
-    case 4: return &wall_batch_avx2;
-    default: return &wall_batch_scalar;
-  }
+  return widest<WallBatchFn>(max_lanes, &wall_batch_avx512, &wall_batch_avx2, &wall_batch_scalar);
 }
 
 }  // namespace seedcal

@@ -107,8 +107,9 @@ TEST(DrumQuick, FacetedShellCarriesTheBed) {
 // 0.1 s over 2-5 s (a slumping bed swings by 10 deg between avalanches, so the mean needs many
 // frames). Measured: 39.70 deg (sd 0.06) -> 43.18 (0.91), 5.41 pooled sd, 100-112 CPU s a run;
 // with frames over 2-8 s 39.47 (0.36) -> 42.95 (0.19). Over the paper's 5-15 rpm no rise is
-// resolved: +0.28 deg (0.8 pooled sd) read over 6 s, -0.35 deg (-1.01) over 28 s. The check is the trend study's own (`seedcal study trend`: more than 2
-// pooled sd, every step the expected way).
+// resolved: +0.28 deg (0.8 pooled sd) read over 6 s, -0.35 deg (-1.01) over 28 s. The check is
+// the trend study's own (`seedcal study trend`: more than 2 pooled sd, every step the expected
+// way).
 TEST(DrumSpeedTrend, AngleRisesFromSlumpingToCascading) {
   const std::string out = testing::scratch_dir("drum-speed-trend");
   std::string frames = "[2.0";
