@@ -70,15 +70,71 @@ inline bool touches_wall(const Wall& wall, const SphereView& sv, std::uint32_t p
 }  // namespace
 
 struct ForceKernel {
+  // The serial set-up of a step's pass (contact_forces.hpp).
+  static void prepare(Simulation& s, ContactPass& p);
+  // One thread's shares of the pass.
   template <NormalModel NM, RollingModel RM>
-  static void run(Simulation& s, std::vector<int>& sphere_group_touch,
-                  std::vector<int>& wall_group_touch, ThreadStats& total);
+  static void pass(Simulation& s, ContactPass& p, int t, int team);
 };
 
+void ForceKernel::prepare(Simulation& s, ContactPass& p) {
+  p.normal = s.options_.contact.normal;
+  p.rolling = s.options_.contact.rolling;
+  const std::size_t groups = s.pairs_.group_count();
+  // Touching pairs per body pair: HMNR's damping scale, and the per-body contact counts when they
+  // are tracked; otherwise not counted (a pass over every group of the list).
+  p.count_groups = p.normal == NormalModel::hmnr || s.options_.track_body_contacts;
+  if (p.count_groups) s.sphere_group_touch_.assign(groups, 0);
+  else s.sphere_group_touch_.clear();
+  s.wall_group_touch_.assign(s.wall_pairs_.group_count(), 0);
+  p.stats.assign(static_cast<std::size_t>(std::max(1, s.options_.threads)), ThreadStats{});
+  for (ThreadStats& ts : p.stats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
+
+  // Hertz-Mindlin or HMNR, with no rolling friction or with CDT: touching sphere pairs go through
+  // the batch kernel (sim/pair_batch.hpp), several at a time where the CPU allows; EPSD keeps the
+  // pair loop (its rolling spring needs the pair's history and the bodies' inertia).
+  if (p.rolling == RollingModel::epsd) return;
+  const InteractionTable& table = s.table_;
+  const std::size_t nm = table.material_count();
+  // The table is fixed for the simulation's life: its constants are packed once.
+  if (p.batch_constants.size() != nm * nm) {
+    p.batch_constants.resize(nm * nm);
+    for (std::size_t i = 0; i < nm; ++i)
+      for (std::size_t j = 0; j < nm; ++j) {
+        const PairConstants& pc =
+            table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
+        p.batch_constants[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction,
+                                         pc.rolling_friction, pc.sqrt_tangential_ratio};
+      }
+  }
+  const bool lever_com = s.options_.contact.cdt_lever_from_centre_of_mass;
+  auto& tang = s.pairs_.tangential();
+  auto& wtang = s.wall_pairs_.tangential();
+  PairBatchArgs& batch = p.batch;
+  batch.spheres = reinterpret_cast<const double*>(s.sphere_view_.data());
+  batch.bodies = reinterpret_cast<const double*>(s.body_view_.data());
+  batch.pair_constants = p.batch_constants.data();
+  batch.materials = nm;
+  batch.si = s.pairs_.si().data();
+  batch.sj = s.pairs_.sj().data();
+  batch.tangential_m = tang.empty() ? nullptr : tang.data()->data();
+  batch.dt_s = s.options_.dt_s;
+  batch.clip_attractive = s.options_.contact.clip_attractive;
+  batch.cdt = p.rolling == RollingModel::cdt;
+  batch.cdt_lever_from_centre_of_mass = lever_com;
+  p.batch_fn = choose_pair_batch(s.options_.simd_lanes);
+  WallBatchArgs& wall_args = p.wall_args;
+  wall_args.bodies = batch.bodies;
+  wall_args.pair_constants = batch.pair_constants;
+  wall_args.tangential_m = wtang.empty() ? nullptr : wtang.data()->data();
+  wall_args.dt_s = batch.dt_s;
+  wall_args.clip_attractive = batch.clip_attractive;
+  wall_args.cdt = batch.cdt;
+  p.wall_fn = choose_wall_batch(s.options_.simd_lanes);
+}
+
 template <NormalModel NM, RollingModel RM>
-void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
-                      std::vector<int>& wall_group_touch, ThreadStats& total) {
-  const int threads = std::max(1, s.options_.threads);
+void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
   const double dt = s.options_.dt_s;
   const bool clip = s.options_.contact.clip_attractive;
   const double eta_r = s.options_.contact.epsd_damping_ratio;
@@ -98,11 +154,9 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   auto& tang = pairs.tangential();
   auto& roll = pairs.rolling();
   const std::size_t groups = pairs.group_count();
-  // Touching pairs per body pair: HMNR's damping scale, and the per-body contact counts when they
-  // are tracked; otherwise not counted (a pass over every group of the list).
-  const bool count_groups = NM == NormalModel::hmnr || s.options_.track_body_contacts;
-  if (count_groups) sphere_group_touch.assign(groups, 0);
-  else sphere_group_touch.clear();
+  const bool count_groups = p.count_groups;
+  std::vector<int>& sphere_group_touch = s.sphere_group_touch_;
+  std::vector<int>& wall_group_touch = s.wall_group_touch_;
 
   auto& wl = s.wall_pairs_;
   const auto& wgs = wl.group_start();
@@ -111,71 +165,22 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
   const auto& wp = wl.primitive();
   auto& wtang = wl.tangential();
   auto& wroll = wl.rolling();
-  const std::size_t wgroups = wl.group_count();
-  wall_group_touch.assign(wgroups, 0);
 
-  // Hertz-Mindlin or HMNR, with no rolling friction or with CDT: touching sphere pairs go through
-  // the batch kernel (sim/pair_batch.hpp), four at a time where the CPU allows; EPSD keeps the
-  // pair loop below (its rolling spring needs the pair's history and the bodies' inertia).
   constexpr bool batched = RM != RollingModel::epsd;
-  PairBatchArgs batch;
-  std::vector<BatchPairConstants> batch_constants;
-  PairBatchFn batch_fn = nullptr;
+  const PairBatchArgs& batch = p.batch;
+  const PairBatchFn batch_fn = p.batch_fn;
   const std::size_t nm = table.material_count();
-  WallBatchArgs wall_args;
-  WallBatchFn wall_fn = nullptr;
-  if constexpr (batched) {
-    batch_constants.resize(nm * nm);
-    for (std::size_t i = 0; i < nm; ++i)
-      for (std::size_t j = 0; j < nm; ++j) {
-        const PairConstants& pc =
-            table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
-        batch_constants[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction,
-                                       pc.rolling_friction, pc.sqrt_tangential_ratio};
-      }
-    batch.spheres = reinterpret_cast<const double*>(SV);
-    batch.bodies = reinterpret_cast<const double*>(BV);
-    batch.pair_constants = batch_constants.data();
-    batch.materials = nm;
-    batch.si = si.data();
-    batch.sj = sj.data();
-    batch.tangential_m = tang.empty() ? nullptr : tang.data()->data();
-    batch.dt_s = dt;
-    batch.clip_attractive = clip;
-    batch.cdt = RM == RollingModel::cdt;
-    batch.cdt_lever_from_centre_of_mass = lever_com;
-    batch_fn = choose_pair_batch(s.options_.simd_lanes);
-    wall_args.bodies = batch.bodies;
-    wall_args.pair_constants = batch.pair_constants;
-    wall_args.tangential_m = wtang.empty() ? nullptr : wtang.data()->data();
-    wall_args.dt_s = dt;
-    wall_args.clip_attractive = clip;
-    wall_args.cdt = batch.cdt;
-    wall_fn = choose_wall_batch(s.options_.simd_lanes);
-  }
+  const WallBatchArgs& wall_args = p.wall_args;
+  const WallBatchFn wall_fn = p.wall_fn;
 
   // Each thread takes the sphere pairs and then the wall pairs of one range of bodies, the ranges
   // cut where the work is equal (sim/work_split.hpp). One thread takes everything in list order.
-  const std::uint32_t* body_of_sphere = s.spheres_.body.data();
-  const std::vector<WorkShare> shares = split_contact_work(
-      {gs, groups, [&](std::size_t g) { return body_of_sphere[si[gs[g]]]; }},
-      {wgs, wgroups, [&](std::size_t g) { return body_of_sphere[ws[wgs[g]]]; }},
-      B.size(), static_cast<std::size_t>(threads));
-  std::vector<ThreadStats> tstats(static_cast<std::size_t>(threads));
-  for (ThreadStats& ts : tstats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
-  // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; compute_forces() turns the
+  // Normally one share per thread; should the team be smaller, its threads take the rest in turn.
+  const std::vector<WorkShare>& shares = s.work_shares_;
+  const auto team = static_cast<std::size_t>(team_size);
+  // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; the force reduction turns the
   // body's total into its rolling torque (contact/rolling_cdt.hpp).
-#pragma omp parallel num_threads(threads) if (threads > 1)
   {
-    int t = 0;
-#ifdef _OPENMP
-    t = omp_get_thread_num();
-#endif
-    // Normally one share per thread; should the team be smaller, its threads take the rest in turn.
-    std::size_t team = 1;
-#ifdef _OPENMP
-    team = static_cast<std::size_t>(omp_get_num_threads());
-#endif
     // A starts at zero: the force reduction clears it (Simulation::compute_forces).
     BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
     // Every write to A marks its body here (the reduction reads only marked accumulators).
@@ -188,7 +193,7 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       WA[w].contacts = 0;
     }
     // A private copy: the per-contact updates must not share a cache line between threads.
-    ThreadStats st = tstats[static_cast<std::size_t>(t)];
+    ThreadStats st = p.stats[static_cast<std::size_t>(t)];
     // Filled here and handed over at the end: the vectors' own records sit side by side in
     // thread_cdt_wall_, and a push_back into them would write to a line the other threads use.
     std::vector<Simulation::CdtWallShare> cdt_wall;
@@ -475,10 +480,15 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
     }
     if constexpr (RM == RollingModel::cdt)
       cdt_wall.swap(s.thread_cdt_wall_[static_cast<std::size_t>(t)]);
-    tstats[static_cast<std::size_t>(t)] = st;
+    p.stats[static_cast<std::size_t>(t)] = st;
   }
+}
 
-  for (const ThreadStats& st : tstats) {
+void prepare_contact_pass(Simulation& s, ContactPass& pass) { ForceKernel::prepare(s, pass); }
+
+ThreadStats finish_contact_pass(const ContactPass& pass) {
+  ThreadStats total;
+  for (const ThreadStats& st : pass.stats) {
     total.sphere_contacts += st.sphere_contacts;
     total.wall_contacts += st.wall_contacts;
     total.max_overlap = std::max(total.max_overlap, st.max_overlap);
@@ -491,21 +501,22 @@ void ForceKernel::run(Simulation& s, std::vector<int>& sphere_group_touch,
       total.worst_radius = st.worst_radius;
     }
   }
+  return total;
 }
 
-// Dispatch: the model combination is chosen once, at run time, from the options.
-void run_force_kernel(Simulation& s, NormalModel nm, RollingModel rm, std::vector<int>& sg,
-                      std::vector<int>& wg, ThreadStats& total) {
+// Dispatch: the model combination is chosen once per step, at run time, from the options.
+void run_contact_pass(Simulation& s, ContactPass& pass, int thread, int team) {
   using N = NormalModel;
   using R = RollingModel;
-  if (nm == N::hertz_mindlin) {
-    if (rm == R::none) ForceKernel::run<N::hertz_mindlin, R::none>(s, sg, wg, total);
-    else if (rm == R::cdt) ForceKernel::run<N::hertz_mindlin, R::cdt>(s, sg, wg, total);
-    else ForceKernel::run<N::hertz_mindlin, R::epsd>(s, sg, wg, total);
+  const RollingModel rm = pass.rolling;
+  if (pass.normal == N::hertz_mindlin) {
+    if (rm == R::none) ForceKernel::pass<N::hertz_mindlin, R::none>(s, pass, thread, team);
+    else if (rm == R::cdt) ForceKernel::pass<N::hertz_mindlin, R::cdt>(s, pass, thread, team);
+    else ForceKernel::pass<N::hertz_mindlin, R::epsd>(s, pass, thread, team);
   } else {
-    if (rm == R::none) ForceKernel::run<N::hmnr, R::none>(s, sg, wg, total);
-    else if (rm == R::cdt) ForceKernel::run<N::hmnr, R::cdt>(s, sg, wg, total);
-    else ForceKernel::run<N::hmnr, R::epsd>(s, sg, wg, total);
+    if (rm == R::none) ForceKernel::pass<N::hmnr, R::none>(s, pass, thread, team);
+    else if (rm == R::cdt) ForceKernel::pass<N::hmnr, R::cdt>(s, pass, thread, team);
+    else ForceKernel::pass<N::hmnr, R::epsd>(s, pass, thread, team);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "solver/contact/contact_model.hpp"
+#include "solver/sim/pair_batch.hpp"
 
 namespace seedcal {
 
@@ -29,10 +30,26 @@ struct ThreadStats {
   }
 };
 
-// Computes all contact forces and torques into the simulation's per-thread buffers; records the
-// number of touching sphere pairs per group.
-void run_force_kernel(Simulation& s, NormalModel nm, RollingModel rm,
-                      std::vector<int>& sphere_group_touch, std::vector<int>& wall_group_touch,
-                      ThreadStats& total);
+// One step's contact forces: set up once by one thread (prepare_contact_pass), then run by every
+// thread of a team on its shares of the lists (run_contact_pass, inside the step's parallel
+// region; Simulation::work_shares_, sim/work_split.hpp), then combined (finish_contact_pass).
+// Each thread writes its forces and torques to its own accumulators; the force reduction sums
+// them in thread order. Records the number of touching sphere pairs per group.
+struct ContactPass {
+  NormalModel normal = NormalModel::hertz_mindlin;
+  RollingModel rolling = RollingModel::none;
+  bool count_groups = false;  // touching pairs per group recorded (HMNR, tracked contacts)
+  PairBatchArgs batch;
+  PairBatchFn batch_fn = nullptr;
+  WallBatchArgs wall_args;
+  WallBatchFn wall_fn = nullptr;
+  std::vector<BatchPairConstants> batch_constants;  // packed once: the table is fixed
+  std::vector<ThreadStats> stats;                   // one per thread
+};
+
+void prepare_contact_pass(Simulation& s, ContactPass& pass);
+// Thread `thread` of a team of `team`: its shares' sphere and wall contacts.
+void run_contact_pass(Simulation& s, ContactPass& pass, int thread, int team);
+ThreadStats finish_contact_pass(const ContactPass& pass);
 
 }  // namespace seedcal

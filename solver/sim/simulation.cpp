@@ -12,9 +12,10 @@
 #include <omp.h>
 #endif
 
-#include "solver/contact/rolling_cdt.hpp"
 #include "solver/integrate/free_rotation.hpp"
 #include "solver/sim/contact_forces.hpp"
+#include "solver/sim/phase_clock.hpp"
+#include "solver/sim/work_split.hpp"
 #include "solver/sim/time_step.hpp"
 
 namespace seedcal {
@@ -61,7 +62,7 @@ std::uint32_t Simulation::add_body(const BodyDef& def) {
   bodies_.velocity_m_s.push_back(def.velocity_m_s);
   const Vec3& I = def.principal_inertia_kg_m2;
   const bool iso = std::abs(I.x() - I.y()) <= 1e-12 * I.x() && std::abs(I.x() - I.z()) <= 1e-12 * I.x();
-  // 2: a lone sphere at the centre of mass, whose orientation moves nothing (first_half_step).
+  // 2: a lone sphere at the centre of mass, whose orientation moves nothing (move_bodies).
   const bool lone = def.spheres.size() == 1 && def.spheres.front().offset_m.isZero(0.0);
   bodies_.isotropic.push_back(iso ? (lone ? 2 : 1) : 0);
   bodies_.principal_inertia.push_back(I);
@@ -256,6 +257,12 @@ void Simulation::size_thread_buffers() {
   for (auto& touched : thread_body_touched_)
     if (touched.size() < nb) touched.resize(nb, 0);
   thread_wall_acc_.assign(t, std::vector<WallAccumulator>(nw));
+  thread_acc_ptr_.resize(t);
+  thread_touched_ptr_.resize(t);
+  for (std::size_t k = 0; k < t; ++k) {
+    thread_acc_ptr_[k] = thread_body_acc_[k].data();
+    thread_touched_ptr_[k] = thread_body_touched_[k].data();
+  }
   thread_cdt_wall_.resize(t);
   thread_scratch_.resize(t);
 }
@@ -284,6 +291,7 @@ void Simulation::rebuild_lists() {
   wall_pairs_.build(spheres_, walls_, skin_m_, rolling_history);
   wall_pose_at_build_.clear();
   for (const Wall& w : walls_) wall_pose_at_build_.push_back(w.pose);
+  ++lists_version_;
 }
 
 // Spheres and walls each may use half the skin before a pair can be missed; a wall's share is
@@ -296,174 +304,6 @@ bool Simulation::walls_moved_beyond_skin() const {
       return true;
   }
   return false;
-}
-
-namespace {
-// Adds the time since `t0` to `acc` and restarts `t0`, when profiling.
-inline void lap(bool on, std::chrono::steady_clock::time_point& t0, double& acc) {
-  if (!on) return;
-  const auto t1 = std::chrono::steady_clock::now();
-  acc += std::chrono::duration<double>(t1 - t0).count();
-  t0 = t1;
-}
-}  // namespace
-
-std::int64_t Simulation::compute_forces(bool mid_step) {
-  ThreadStats total;
-  const bool prof = options_.profile;
-  auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  // Inside step() the views were refreshed by first_half_step() (or after a spatial sort).
-  if (!mid_step) refresh_views(0.0);
-  run_force_kernel(*this, options_.contact.normal, options_.contact.rolling, sphere_group_touch_,
-                   wall_group_touch_, total);
-  lap(prof, t0, profile_.contact_s);
-  const std::size_t nb = bodies_.size();
-  const std::size_t nt = thread_body_acc_.size();
-  const Vec3 g = options_.gravity_m_s2;
-  const bool cdt = options_.contact.rolling == RollingModel::cdt;
-  const bool cdt_limit = options_.contact.cdt_stop_limit;
-  const double dt = options_.dt_s;
-  // The torques computed now act over the second half of this step and the first half of the
-  // next (velocity Verlet): over dt from mid-step, over dt/2 when the velocities are at the force
-  // time (the first call).
-  const double h = mid_step ? dt : 0.5 * dt;
-  if (cdt) cdt_torque_per_capacity_.resize(nb);
-  // Sum the threads' shares in thread order and settle the CDT torque; the NaN guard rides along
-  // (lowest bad body reported). Mid-step, the second half kick is left pending (finish_kick()).
-  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
-  // Raw pointers, so that the stores do not make the compiler reload the state.
-  std::vector<BodyAccumulator*> acc_of(nt);
-  std::vector<std::uint8_t*> touched_of(nt);
-  for (std::size_t t = 0; t < nt; ++t) {
-    acc_of[t] = thread_body_acc_[t].data();
-    touched_of[t] = thread_body_touched_[t].data();
-  }
-  std::vector<WallAccumulator*> wall_acc_of(nt);
-  for (std::size_t t = 0; t < nt; ++t) wall_acc_of[t] = thread_wall_acc_[t].data();
-  BodyAccumulator* const* __restrict acc_ptr = acc_of.data();
-  std::uint8_t* const* __restrict touched_ptr = touched_of.data();
-  const double* __restrict mass = bodies_.mass_kg.data();
-  const Vec3* __restrict mom = bodies_.angular_momentum.data();
-  const Vec3* __restrict omega = bodies_.angular_velocity.data();
-  Vec3* __restrict force = bodies_.force_n.data();
-  Vec3* __restrict torque = bodies_.torque_n_m.data();
-  Vec3* __restrict cdt_u = cdt ? cdt_torque_per_capacity_.data() : nullptr;
-  WallAccumulator* const* __restrict wall_acc = wall_acc_of.data();
-#pragma omp parallel num_threads(options_.threads) if (options_.threads > 1) \
-    reduction(min : first_bad)
-  {
-#pragma omp for schedule(static)
-  for (std::size_t b = 0; b < nb; ++b) {
-    Vec3 f = mass[b] * g, tq = Vec3::Zero();
-    double capacity = 0.0;
-    for (std::size_t t = 0; t < nt; ++t) {
-      // A thread's accumulator is read only where it wrote this step (the others hold zero).
-      if (!touched_ptr[t][b]) continue;
-      touched_ptr[t][b] = 0;
-      BodyAccumulator& acc = acc_ptr[t][b];
-      f += acc.force_n;
-      tq += acc.torque_n_m;
-      if (cdt) capacity += acc.roll_capacity_n_m;
-      // Cleared for the next step here, where the line is in cache and the bodies are split
-      // between the threads, instead of by every thread over every body in the kernel.
-      acc.force_n.setZero();
-      acc.torque_n_m.setZero();
-      acc.roll_capacity_n_m = 0.0;
-    }
-    if (cdt) {
-      Vec3 u = Vec3::Zero();
-      if (capacity > 0.0) u = cdt_limit ? cdt_stop_limited(mom[b], tq, capacity, h)
-                                        : cdt_sign_direction(omega[b]);
-      cdt_u[b] = u;
-      tq += capacity * u;
-    }
-    force[b] = f;
-    torque[b] = tq;
-    if (!std::isfinite(f.sum() + tq.sum()))
-      first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
-  }
-  // (the barrier after the loop: every body's CDT direction is known)
-  // The walls take the reaction of their contacts' rolling torques (a drum feels it about its
-  // axis): each kernel thread's shares go into that thread's wall accumulators, summed below.
-  if (cdt) {
-    std::size_t tid = 0, team = 1;
-#ifdef _OPENMP
-    tid = static_cast<std::size_t>(omp_get_thread_num());
-    team = static_cast<std::size_t>(omp_get_num_threads());
-#endif
-    for (std::size_t t = tid; t < nt; t += team)
-      for (const CdtWallShare& share : thread_cdt_wall_[t])
-        wall_acc[t][share.wall].torque_n_m -= share.capacity_n_m * cdt_u[share.body];
-  }
-  }
-  if (mid_step) {
-    kick_pending_ = true;
-    kick_dt_s_ = dt;
-  }
-  for (std::size_t w = 0; w < walls_.size(); ++w) {
-    Vec3 f = Vec3::Zero(), tq = Vec3::Zero();
-    double k = 0.0;
-    int c = 0;
-    for (std::size_t t = 0; t < nt; ++t) {
-      const WallAccumulator& acc = thread_wall_acc_[t][w];
-      f += acc.force_n;
-      tq += acc.torque_n_m;
-      k += acc.contact_stiffness_n_m;
-      c += acc.contacts;
-    }
-    walls_[w].force_n = f;
-    walls_[w].torque_n_m = tq;
-    walls_[w].contact_stiffness_n_m = k;
-    walls_[w].contacts = c;
-  }
-  stats_ = StepStats{};
-  stats_.sphere_contacts = total.sphere_contacts;
-  stats_.wall_contacts = total.wall_contacts;
-  stats_.max_overlap_m = total.max_overlap;
-  stats_.max_normal_force_n = total.max_fn;
-  if (options_.track_body_contacts) {
-    body_contacts_.assign(nb, 0);
-    const auto& gs = pairs_.group_start();
-    for (std::size_t k = 0; k < sphere_group_touch_.size(); ++k) {
-      if (sphere_group_touch_[k] == 0) continue;
-      const std::uint32_t p = gs[k];
-      body_contacts_[spheres_.body[pairs_.si()[p]]] += sphere_group_touch_[k];
-      body_contacts_[spheres_.body[pairs_.sj()[p]]] += sphere_group_touch_[k];
-    }
-    const auto& wgs = wall_pairs_.group_start();
-    for (std::size_t k = 0; k < wall_group_touch_.size(); ++k)
-      body_contacts_[spheres_.body[wall_pairs_.sphere()[wgs[k]]]] += wall_group_touch_[k];
-    for (int c : body_contacts_) stats_.max_body_contacts = std::max(stats_.max_body_contacts, c);
-  }
-  if (total.worst_ratio > options_.guards.max_overlap_fraction && failure_.status == RunStatus::ok) {
-    std::ostringstream m;
-    m << "overlap reached " << total.worst_ratio << " of the radius of a sphere with r = "
-      << total.worst_radius << " m (limit " << options_.guards.max_overlap_fraction
-      << "; Hertz contact assumes an overlap much smaller than the radius)";
-    // A clump whose spheres differ much in size: a small sphere standing out of a large one
-    // takes the body's whole momentum alone before the large sphere touches.
-    double r_body_max = 0.0;
-    if (total.worst_body >= 0) {
-      const auto b = static_cast<std::size_t>(total.worst_body);
-      for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
-        r_body_max = std::max(r_body_max, spheres_.radius_m[i]);
-    }
-    const std::string step_note = step_size_note();
-    if (!step_note.empty()) {
-      m << "; likely cause: " << step_note;
-    } else if (r_body_max >= 5.0 * total.worst_radius) {
-      m << "; likely cause: the body's spheres range from r = " << total.worst_radius << " to "
-        << r_body_max << " m (radius ratio 1:" << r_body_max / total.worst_radius
-        << ") and the small sphere carries the body alone: make the small spheres of the clump "
-           "larger or let them stand out less, or raise youngs_modulus_pa";
-    } else {
-      m << "; likely cause: particles too soft for the load (raise youngs_modulus_pa) or a time "
-           "step too large for the impact speed (lower dt_s)";
-    }
-    fail(RunStatus::deep_overlap, total.worst_body, m.str());
-  }
-  lap(prof, t0, profile_.reduce_s);
-  return first_bad == std::numeric_limits<std::int64_t>::max() ? -1 : first_bad;
 }
 
 void Simulation::finish_kick() {
@@ -481,21 +321,13 @@ void Simulation::finish_kick() {
   kick_pending_ = false;
 }
 
-bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
-  const std::size_t nb = bodies_.size(), ns = spheres_.size();
-  // The previous step's second half kick, when pending, with that step's dt (finish_kick()).
-  const bool kick = kick_pending_;
-  const double hk = 0.5 * kick_dt_s_;
-  kick_pending_ = false;
-  body_view_.resize(nb);
-  sphere_view_.resize(ns);
+void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, bool kick,
+                             double hk, const Vec3* ref, double& max_moved_sq,
+                             std::int64_t& bad) {
   // Dashpot velocities: v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and L~_{n+1} = L_{n+1/2} + dt/2 T_n
   // (Groot & Warren 1997, eq. 17 with lambda = 1; see contact/hertz_mindlin.hpp), with F_n, T_n
   // the forces of the previous step still held by the bodies.
   const double h = 0.5 * dt;
-  // Skin check against the centres at the last neighbour build (none after a renumbering).
-  const std::vector<Vec3>& built = pairs_.built_at();
-  const Vec3* __restrict ref = built.size() == ns ? built.data() : nullptr;
   // Raw pointers: the stores to the views must not make the compiler reload the state.
   Vec3* __restrict pos = bodies_.position_m.data();
   Quat* __restrict rot = bodies_.orientation.data();
@@ -514,8 +346,6 @@ bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
   Vec3* __restrict centre = spheres_.position_m.data();
   BodyView* __restrict bview = body_view_.data();
   SphereView* __restrict sview = sphere_view_.data();
-  double max_moved_sq = 0.0;
-  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   // Blocks of bodies, each in two passes: the kick, drift and rotation of the block's clumps,
   // then the views and spheres of all its bodies (a sphere's kick, drift and rotation there). A
   // clump's rotation is a chain of dependent operations (integrate/free_rotation.hpp); in a short
@@ -524,16 +354,13 @@ bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
   // first-level cache between the passes; spheres stay in one pass, where a second costs more
   // than it saves.
   constexpr std::size_t kBlock = 32;
-  const std::size_t blocks = (nb + kBlock - 1) / kBlock;
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1) \
-    reduction(max : max_moved_sq) reduction(min : bad)
-  for (std::size_t blk = 0; blk < blocks; ++blk) {
-    const std::size_t b_begin = blk * kBlock, b_end = std::min(nb, b_begin + kBlock);
-    for (std::size_t b = b_begin; b < b_end; ++b)
+  for (std::size_t b_block = b_begin; b_block < b_end; b_block += kBlock) {
+    const std::size_t block_end = std::min(b_end, b_block + kBlock);
+    for (std::size_t b = b_block; b < block_end; ++b)
       if (iso_flag[b] == 0)
         kick_drift_rotate(b, false, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
                           inv_inertia, bad);
-    for (std::size_t b = b_begin; b < b_end; ++b) {
+    for (std::size_t b = b_block; b < block_end; ++b) {
       if (iso_flag[b] == 2) {
         lone_sphere_step(b, kick, hk, h, dt, pos, vel, mom, omega, force, torque, inv_mass,
                          inv_inertia, first[b], radius, material, centre, bview, sview, ref,
@@ -567,10 +394,36 @@ bool Simulation::first_half_step(double dt, std::int64_t& first_bad) {
       }
     }
   }
-  first_bad = bad == std::numeric_limits<std::int64_t>::max() ? -1 : bad;
-  return ref == nullptr || max_moved_sq > pairs_.rebuild_distance_sq();
 }
 
+void Simulation::update_work_shares() {
+  const auto nt = static_cast<std::size_t>(std::max(1, options_.threads));
+  const std::size_t nb = bodies_.size();
+  if (shares_version_ == lists_version_ && work_shares_.size() == nt && shares_bodies_ == nb)
+    return;
+  const std::uint32_t* body_of_sphere = spheres_.body.data();
+  const auto& gs = pairs_.group_start();
+  const auto& si = pairs_.si();
+  const auto& wgs = wall_pairs_.group_start();
+  const auto& ws = wall_pairs_.sphere();
+  work_shares_ = split_contact_work(
+      {gs, pairs_.group_count(), [&](std::size_t g) { return body_of_sphere[si[gs[g]]]; }},
+      {wgs, wall_pairs_.group_count(), [&](std::size_t g) { return body_of_sphere[ws[wgs[g]]]; }},
+      nb, nt);
+  split_bodies_by_spheres(bodies_.first_sphere, nb, work_shares_);
+  shares_version_ = lists_version_;
+  shares_bodies_ = nb;
+}
+
+// One step: the first half of velocity Verlet for every body (with the last step's pending
+// second half kick), the walls' motion, the neighbour lists when the skin is used up, the contact
+// forces, their reduction to the bodies, the guards. The threads stay in one parallel region from
+// the body pass to the force reduction, meeting at two barriers (every view written before any
+// contact is computed; every contact before any body's forces are summed), unless the lists must
+// be rebuilt or the bodies re-sorted this step; then the region ends after the body pass and the
+// forces take a region of their own. Each thread moves, and sums the forces of, fixed ranges of
+// bodies (sim/work_split.hpp), so the results do not depend on which path a step takes or on the
+// timing of the threads.
 bool Simulation::step() {
   if (failure_.status != RunStatus::ok) return false;
   ensure_ready();
@@ -578,25 +431,82 @@ bool Simulation::step() {
   const double dt = options_.dt_s;
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
-  std::int64_t moved_bad = -1;
-  bool rebuild = first_half_step(dt, moved_bad);
-  for (Wall& w : walls_)
-    if (w.motion) w.motion->advance(w, time_s_, dt);
-  time_s_ += dt;
-  ++step_;
-  lap(prof, t0, profile_.integrate_s);
-  if (options_.sort_interval_steps > 0 && step_ % options_.sort_interval_steps == 0 &&
-      bodies_.size() >= 512) {
-    if (sort_spatially()) {
+  const std::size_t nb = bodies_.size(), ns = spheres_.size();
+  const int nt = std::max(1, options_.threads);
+  update_work_shares();
+  const std::vector<WorkShare>& shares = work_shares_;
+  const bool sort_due = options_.sort_interval_steps > 0 &&
+                        (step_ + 1) % options_.sort_interval_steps == 0 && nb >= 512;
+  // The previous step's second half kick, when pending, with that step's dt (finish_kick()).
+  const bool kick = kick_pending_;
+  const double hk = 0.5 * kick_dt_s_;
+  kick_pending_ = false;
+  body_view_.resize(nb);
+  sphere_view_.resize(ns);
+  // Skin check against the centres at the last neighbour build (none after a renumbering).
+  const std::vector<Vec3>& built = pairs_.built_at();
+  const Vec3* ref = built.size() == ns ? built.data() : nullptr;
+  // Valid for this step's forces unless the lists are rebuilt (then compute_forces() sets it up
+  // again).
+  prepare_contact_pass(*this, contact_pass_);
+  const bool cdt = options_.contact.rolling == RollingModel::cdt;
+  if (cdt) cdt_torque_per_capacity_.resize(nb);
+  step_moved_sq_.assign(static_cast<std::size_t>(nt), 0.0);
+  step_bad_.assign(static_cast<std::size_t>(nt), std::numeric_limits<std::int64_t>::max());
+  bool walls_moved = false, rebuild = false;
+  std::int64_t force_bad = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel num_threads(nt) if (nt > 1) reduction(min : force_bad)
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    double moved_sq = 0.0;
+    std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+    for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size();
+         sh += static_cast<std::size_t>(team))
+      move_bodies(shares[sh].move_begin, shares[sh].move_end, dt, kick, hk, ref, moved_sq, bad);
+    step_moved_sq_[static_cast<std::size_t>(t)] = moved_sq;
+    step_bad_[static_cast<std::size_t>(t)] = bad;
+    if (t == 0) {
+      for (Wall& w : walls_)
+        if (w.motion) w.motion->advance(w, time_s_, dt);
+      time_s_ += dt;
+      ++step_;
+      walls_moved = walls_moved_beyond_skin();
+    }
+#pragma omp barrier
+    // Every thread reaches the same decision from the same values.
+    double moved_all_sq = 0.0;
+    for (double m : step_moved_sq_) moved_all_sq = std::max(moved_all_sq, m);
+    const bool rebuild_now = ref == nullptr || moved_all_sq > pairs_.rebuild_distance_sq();
+    if (t == 0) {
+      rebuild = rebuild_now;
+      lap(prof, t0, profile_.integrate_s);
+    }
+    if (!rebuild_now && !walls_moved && !sort_due) {
+      run_contact_pass(*this, contact_pass_, t, team);
+#pragma omp barrier
+      if (t == 0) lap(prof, t0, profile_.contact_s);
+      reduce_forces(t, team, dt, force_bad);
+    }
+  }
+  std::int64_t first_bad = -1;
+  if (rebuild || walls_moved || sort_due) {
+    if (sort_due && sort_spatially()) {
       refresh_views(0.5 * dt);
       rebuild = false;  // the renumbering rebuilt the lists
     }
+    if (rebuild || walls_moved_beyond_skin()) rebuild_lists();
+    lap(prof, t0, profile_.neighbour_s);
+    // Forces at t_{n+1}; their second half kick is left pending (finish_kick()).
+    first_bad = compute_forces(true);
+  } else {
+    first_bad = finish_forces(true, force_bad);
+    lap(prof, t0, profile_.reduce_s);
   }
-  if (rebuild || walls_moved_beyond_skin()) rebuild_lists();
-  lap(prof, t0, profile_.neighbour_s);
-  // Forces at t_{n+1}; their second half kick is left pending (finish_kick()).
-  std::int64_t first_bad = compute_forces(true);
-  if (moved_bad >= 0 && (first_bad < 0 || moved_bad < first_bad)) first_bad = moved_bad;
+  std::int64_t moved_bad = std::numeric_limits<std::int64_t>::max();
+  for (std::int64_t b : step_bad_) moved_bad = std::min(moved_bad, b);
+  if (moved_bad != std::numeric_limits<std::int64_t>::max() &&
+      (first_bad < 0 || moved_bad < first_bad))
+    first_bad = moved_bad;
   if (first_bad >= 0 && failure_.status == RunStatus::ok) {
     const std::string step_note = step_size_note();
     fail(RunStatus::non_finite, first_bad,

@@ -14,9 +14,11 @@
 #include "solver/core/body_state.hpp"
 #include "solver/core/materials.hpp"
 #include "solver/sim/body_def.hpp"
+#include "solver/sim/contact_forces.hpp"
 #include "solver/sim/contact_view.hpp"
 #include "solver/sim/guards.hpp"
 #include "solver/sim/kernel_scratch.hpp"
+#include "solver/sim/work_split.hpp"
 #include "solver/walls/wall.hpp"
 #include "solver/walls/wall_contact_list.hpp"
 
@@ -139,7 +141,14 @@ class Simulation {
   // more than half the skin since the neighbour list was built.
   // Also applies a pending second half kick of the previous step first (finish_kick()), and sets
   // `first_bad` to the lowest body whose new state is not finite (or -1).
-  bool first_half_step(double dt, std::int64_t& first_bad);
+  // The body pass of step() over bodies [b_begin, b_end) (one thread's range): sets max_moved_sq
+  // to at least the largest squared displacement of their spheres since `ref` (the centres at the
+  // last neighbour build; null: none) and `bad` to at most the lowest body whose new state is not
+  // finite.
+  void move_bodies(std::size_t b_begin, std::size_t b_end, double dt, bool kick, double hk,
+                   const Vec3* ref, double& max_moved_sq, std::int64_t& bad);
+  // Recomputes work_shares_ when the lists, the bodies or the thread count changed.
+  void update_work_shares();
   // The second half kick of velocity Verlet, v += dt/2 F / m and L += dt/2 T with the forces just
   // computed, is left pending at the end of step(): the next step's first half kick follows it in
   // the same pass over the bodies, which then reads and writes each body's state once instead of
@@ -156,6 +165,13 @@ class Simulation {
   // false when the velocities are already at the force time (then nothing is kicked).
   // Returns the lowest body whose force or torque is not finite, or -1.
   std::int64_t compute_forces(bool mid_step);
+  // Thread `thread` of a team of `team`, after the contact pass: the forces and torques of its
+  // shares' bodies summed over the threads' accumulators (CDT torques over dt `h`), and its wall
+  // contacts' rolling-torque reactions. Lowers first_bad to a body whose sum is not finite.
+  void reduce_forces(int thread, int team, double h, std::int64_t& first_bad);
+  // The serial end of the forces: wall totals, statistics, the overlap guard; the second half
+  // kick left pending when `mid_step`. Returns first_bad, or -1 for none (max).
+  std::int64_t finish_forces(bool mid_step, std::int64_t first_bad);
   // Rebuilds the contact views from the state (sim/contact_view.hpp), with dashpot velocities
   // predicted over h (0: the velocities are at the force time).
   void refresh_views(double h);
@@ -204,6 +220,17 @@ class Simulation {
   // only those (a thread's contacts reach few of the other threads' bodies) and clears them.
   std::vector<std::vector<std::uint8_t>> thread_body_touched_;
   std::vector<std::vector<WallAccumulator>> thread_wall_acc_;
+  std::vector<BodyAccumulator*> thread_acc_ptr_;      // thread_body_acc_[t].data()
+  std::vector<std::uint8_t*> thread_touched_ptr_;     // thread_body_touched_[t].data()
+  ContactPass contact_pass_;                          // the contact kernel's set-up, per step
+  // How a step's work is split between the threads (sim/work_split.hpp): recomputed when the
+  // lists change (lists_version_ counts rebuilds and renumberings).
+  std::vector<WorkShare> work_shares_;
+  std::uint64_t lists_version_ = 0, shares_version_ = ~std::uint64_t{0};
+  std::size_t shares_bodies_ = 0;
+  // Per thread, the body pass's largest squared sphere displacement and lowest bad body.
+  std::vector<double> step_moved_sq_;
+  std::vector<std::int64_t> step_bad_;
   std::vector<WallPose> wall_pose_at_build_;
   std::vector<std::uint32_t> index_of_id_;
   GuardFailure failure_;

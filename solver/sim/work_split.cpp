@@ -58,8 +58,34 @@ std::vector<WorkShare> split_contact_work(const GroupedList& spheres, const Grou
     shares[t].sphere_end = t + 1 == threads ? spheres.groups : first_group_of(spheres, cut[t + 1]);
     shares[t].wall_begin = first_group_of(walls, cut[t]);
     shares[t].wall_end = t + 1 == threads ? walls.groups : first_group_of(walls, cut[t + 1]);
+    shares[t].body_begin = cut[t];
+    shares[t].body_end = cut[t + 1];
   }
   return shares;
+}
+
+void split_bodies_by_spheres(const std::vector<std::uint32_t>& first_sphere, std::size_t bodies,
+                             std::vector<WorkShare>& shares) {
+  const std::size_t n = shares.size();
+  if (n == 0) return;
+  const auto begin = first_sphere.begin();
+  const auto end = begin + static_cast<std::ptrdiff_t>(bodies);
+  const double spheres = bodies == 0 ? 0.0 : static_cast<double>(first_sphere[bodies]);
+  std::size_t prev = 0;
+  for (std::size_t t = 0; t < n; ++t) {
+    shares[t].move_begin = prev;
+    if (t + 1 == n) {
+      shares[t].move_end = bodies;
+    } else {
+      // The first body whose first sphere is at or after (t + 1) / n of the spheres.
+      const double target = spheres * static_cast<double>(t + 1) / static_cast<double>(n);
+      const auto it = std::lower_bound(begin, end, target, [](std::uint32_t s, double x) {
+        return static_cast<double>(s) < x;
+      });
+      shares[t].move_end = std::max(prev, static_cast<std::size_t>(it - begin));
+    }
+    prev = shares[t].move_end;
+  }
 }
 
 }  // namespace seedcal

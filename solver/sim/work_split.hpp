@@ -28,6 +28,12 @@ inline constexpr double kWallPairWeight = 3.0;
 struct WorkShare {
   std::size_t sphere_begin = 0, sphere_end = 0;  // sphere-sphere groups [begin, end)
   std::size_t wall_begin = 0, wall_end = 0;      // sphere-wall groups [begin, end)
+  // The bodies whose groups these are: the force reduction's range too, so that a thread sums
+  // the forces of the bodies whose contacts it computed first.
+  std::size_t body_begin = 0, body_end = 0;
+  // The bodies this share moves in the integrator's pass: equal sphere counts (the pass's cost
+  // is per sphere), cut at body boundaries.
+  std::size_t move_begin = 0, move_end = 0;
 };
 
 // One contact list: `start[g]` is group g's first pair (start[groups] the pair count) and
@@ -42,8 +48,14 @@ struct GroupedList {
 std::size_t group_at_or_after(const std::vector<std::uint32_t>& start, std::size_t groups,
                               std::size_t pair);
 
-// `threads` shares of the two lists over `bodies` bodies, as above.
+// `threads` shares of the two lists over `bodies` bodies, as above. The integrator's ranges
+// (move_begin, move_end) are left to split_bodies_by_spheres().
 std::vector<WorkShare> split_contact_work(const GroupedList& spheres, const GroupedList& walls,
                                           std::size_t bodies, std::size_t threads);
+
+// Sets the shares' integrator ranges: consecutive body ranges with equal numbers of spheres, to
+// within one body; body b owns spheres [first_sphere[b], first_sphere[b + 1]).
+void split_bodies_by_spheres(const std::vector<std::uint32_t>& first_sphere, std::size_t bodies,
+                             std::vector<WorkShare>& shares);
 
 }  // namespace seedcal

@@ -72,7 +72,20 @@ TEST(WorkSplit, SharesCoverEveryGroupOnceByBodyRangesWithEqualWork) {
       }
       EXPECT_NEAR(work(s, w, sh), total / static_cast<double>(threads), largest_body)
           << threads << " threads, share " << t;
+      // The share's body range holds exactly the bodies of its groups (the force reduction sums
+      // the share's bodies), and the ranges tile [0, bodies).
+      EXPECT_EQ(sh.body_begin, t == 0 ? 0u : shares[t - 1].body_end);
+      EXPECT_LE(sh.body_begin, sh.body_end);
+      for (std::size_t g = sh.sphere_begin; g < sh.sphere_end; ++g) {
+        EXPECT_GE(s.body[g], sh.body_begin);
+        EXPECT_LT(s.body[g], sh.body_end);
+      }
+      for (std::size_t g = sh.wall_begin; g < sh.wall_end; ++g) {
+        EXPECT_GE(w.body[g], sh.body_begin);
+        EXPECT_LT(w.body[g], sh.body_end);
+      }
     }
+    EXPECT_EQ(shares.back().body_end, bodies);
   }
 }
 
@@ -90,6 +103,38 @@ TEST(WorkSplit, OneThreadTakesEverythingAndEmptyListsSplit) {
     EXPECT_EQ(sh.sphere_begin, sh.sphere_end);
     EXPECT_EQ(sh.wall_begin, sh.wall_end);
   }
+}
+
+TEST(WorkSplit, IntegratorRangesTileTheBodiesWithEqualSpheres) {
+  // Lone spheres, then clumps of 9, then a few of 40: equal body counts would load the last
+  // shares with most of the spheres.
+  std::vector<std::uint32_t> first{0};
+  std::size_t largest = 0;
+  for (int b = 0; b < 1500; ++b) {
+    const std::uint32_t n = b < 1000 ? 1u : (b < 1480 ? 9u : 40u);
+    largest = std::max<std::size_t>(largest, n);
+    first.push_back(first.back() + n);
+  }
+  const std::size_t bodies = first.size() - 1;
+  for (std::size_t threads : {1, 2, 3, 8}) {
+    std::vector<WorkShare> shares(threads);
+    split_bodies_by_spheres(first, bodies, shares);
+    EXPECT_EQ(shares.front().move_begin, 0u);
+    EXPECT_EQ(shares.back().move_end, bodies);
+    for (std::size_t t = 0; t < threads; ++t) {
+      if (t > 0) {
+        EXPECT_EQ(shares[t].move_begin, shares[t - 1].move_end);
+      }
+      const double spheres = first[shares[t].move_end] - first[shares[t].move_begin];
+      EXPECT_NEAR(spheres, static_cast<double>(first.back()) / static_cast<double>(threads),
+                  static_cast<double>(largest))
+          << threads << " threads, share " << t;
+    }
+  }
+  // No bodies: every range empty.
+  std::vector<WorkShare> four(4);
+  split_bodies_by_spheres({0}, 0, four);
+  for (const WorkShare& sh : four) EXPECT_EQ(sh.move_begin, sh.move_end);
 }
 
 }  // namespace

@@ -1,0 +1,179 @@
+// The forces of a step: the contact pass (sim/contact_forces.cpp) and the reduction of the
+// threads' accumulators to each body's force and torque, with CDT's rolling torque and the NaN
+// guard; then the walls' totals, the step's statistics and the overlap guard.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <omp.h>
+
+#include "solver/contact/rolling_cdt.hpp"
+#include "solver/sim/contact_forces.hpp"
+#include "solver/sim/phase_clock.hpp"
+#include "solver/sim/simulation.hpp"
+
+namespace seedcal {
+
+std::int64_t Simulation::compute_forces(bool mid_step) {
+  const bool prof = options_.profile;
+  auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+  // Inside step() the views were refreshed by the body pass (or after a spatial sort).
+  if (!mid_step) refresh_views(0.0);
+  update_work_shares();
+  prepare_contact_pass(*this, contact_pass_);
+  if (options_.contact.rolling == RollingModel::cdt) cdt_torque_per_capacity_.resize(bodies_.size());
+  // The torques computed now act over the second half of this step and the first half of the
+  // next (velocity Verlet): over dt from mid-step, over dt/2 when the velocities are at the force
+  // time (the first call).
+  const double h = mid_step ? options_.dt_s : 0.5 * options_.dt_s;
+  const int nt = std::max(1, options_.threads);
+  std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
+#pragma omp parallel num_threads(nt) if (nt > 1) reduction(min : first_bad)
+  {
+    const int t = omp_get_thread_num(), team = omp_get_num_threads();
+    run_contact_pass(*this, contact_pass_, t, team);
+#pragma omp barrier
+    if (t == 0) lap(prof, t0, profile_.contact_s);
+    reduce_forces(t, team, h, first_bad);
+  }
+  first_bad = finish_forces(mid_step, first_bad);
+  lap(prof, t0, profile_.reduce_s);
+  return first_bad;
+}
+
+void Simulation::reduce_forces(int thread, int team, double h, std::int64_t& first_bad) {
+  const std::size_t nt = thread_body_acc_.size();
+  const Vec3 g = options_.gravity_m_s2;
+  const bool cdt = options_.contact.rolling == RollingModel::cdt;
+  const bool cdt_limit = options_.contact.cdt_stop_limit;
+  // Raw pointers, so that the stores do not make the compiler reload the state.
+  BodyAccumulator* const* __restrict acc_ptr = thread_acc_ptr_.data();
+  std::uint8_t* const* __restrict touched_ptr = thread_touched_ptr_.data();
+  const double* __restrict mass = bodies_.mass_kg.data();
+  const Vec3* __restrict mom = bodies_.angular_momentum.data();
+  const Vec3* __restrict omega = bodies_.angular_velocity.data();
+  Vec3* __restrict force = bodies_.force_n.data();
+  Vec3* __restrict torque = bodies_.torque_n_m.data();
+  Vec3* __restrict cdt_u = cdt ? cdt_torque_per_capacity_.data() : nullptr;
+  // Sum the threads' shares in thread order and settle the CDT torque; the NaN guard rides along
+  // (lowest bad body reported). The bodies are those whose contacts this thread computed
+  // (sim/work_split.hpp): the same sums in the same order whichever thread adds them.
+  for (std::size_t sh = static_cast<std::size_t>(thread); sh < work_shares_.size();
+       sh += static_cast<std::size_t>(team))
+  for (std::size_t b = work_shares_[sh].body_begin; b < work_shares_[sh].body_end; ++b) {
+    Vec3 f = mass[b] * g, tq = Vec3::Zero();
+    double capacity = 0.0;
+    for (std::size_t t = 0; t < nt; ++t) {
+      // A thread's accumulator is read only where it wrote this step (the others hold zero).
+      if (!touched_ptr[t][b]) continue;
+      touched_ptr[t][b] = 0;
+      BodyAccumulator& acc = acc_ptr[t][b];
+      f += acc.force_n;
+      tq += acc.torque_n_m;
+      if (cdt) capacity += acc.roll_capacity_n_m;
+      // Cleared for the next step here, where the line is in cache and the bodies are split
+      // between the threads, instead of by every thread over every body in the kernel.
+      acc.force_n.setZero();
+      acc.torque_n_m.setZero();
+      acc.roll_capacity_n_m = 0.0;
+    }
+    if (cdt) {
+      Vec3 u = Vec3::Zero();
+      if (capacity > 0.0) u = cdt_limit ? cdt_stop_limited(mom[b], tq, capacity, h)
+                                        : cdt_sign_direction(omega[b]);
+      cdt_u[b] = u;
+      tq += capacity * u;
+    }
+    force[b] = f;
+    torque[b] = tq;
+    if (!std::isfinite(f.sum() + tq.sum()))
+      first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+  }
+  // The walls take the reaction of their contacts' rolling torques (a drum feels it about its
+  // axis): this thread's wall contacts are those of the bodies just summed, whose CDT directions
+  // are now known, so no other thread need be waited for.
+  if (cdt) {
+    const auto t = static_cast<std::size_t>(thread);
+    WallAccumulator* wall_acc = thread_wall_acc_[t].data();
+    for (const CdtWallShare& share : thread_cdt_wall_[t])
+      wall_acc[share.wall].torque_n_m -= share.capacity_n_m * cdt_u[share.body];
+  }
+}
+
+std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
+  const ThreadStats total = finish_contact_pass(contact_pass_);
+  const std::size_t nb = bodies_.size();
+  const std::size_t nt = thread_body_acc_.size();
+  const double dt = options_.dt_s;
+  if (mid_step) {
+    kick_pending_ = true;
+    kick_dt_s_ = dt;
+  }
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    Vec3 f = Vec3::Zero(), tq = Vec3::Zero();
+    double k = 0.0;
+    int c = 0;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const WallAccumulator& acc = thread_wall_acc_[t][w];
+      f += acc.force_n;
+      tq += acc.torque_n_m;
+      k += acc.contact_stiffness_n_m;
+      c += acc.contacts;
+    }
+    walls_[w].force_n = f;
+    walls_[w].torque_n_m = tq;
+    walls_[w].contact_stiffness_n_m = k;
+    walls_[w].contacts = c;
+  }
+  stats_ = StepStats{};
+  stats_.sphere_contacts = total.sphere_contacts;
+  stats_.wall_contacts = total.wall_contacts;
+  stats_.max_overlap_m = total.max_overlap;
+  stats_.max_normal_force_n = total.max_fn;
+  if (options_.track_body_contacts) {
+    body_contacts_.assign(nb, 0);
+    const auto& gs = pairs_.group_start();
+    for (std::size_t k = 0; k < sphere_group_touch_.size(); ++k) {
+      if (sphere_group_touch_[k] == 0) continue;
+      const std::uint32_t p = gs[k];
+      body_contacts_[spheres_.body[pairs_.si()[p]]] += sphere_group_touch_[k];
+      body_contacts_[spheres_.body[pairs_.sj()[p]]] += sphere_group_touch_[k];
+    }
+    const auto& wgs = wall_pairs_.group_start();
+    for (std::size_t k = 0; k < wall_group_touch_.size(); ++k)
+      body_contacts_[spheres_.body[wall_pairs_.sphere()[wgs[k]]]] += wall_group_touch_[k];
+    for (int c : body_contacts_) stats_.max_body_contacts = std::max(stats_.max_body_contacts, c);
+  }
+  if (total.worst_ratio > options_.guards.max_overlap_fraction && failure_.status == RunStatus::ok) {
+    std::ostringstream m;
+    m << "overlap reached " << total.worst_ratio << " of the radius of a sphere with r = "
+      << total.worst_radius << " m (limit " << options_.guards.max_overlap_fraction
+      << "; Hertz contact assumes an overlap much smaller than the radius)";
+    // A clump whose spheres differ much in size: a small sphere standing out of a large one
+    // takes the body's whole momentum alone before the large sphere touches.
+    double r_body_max = 0.0;
+    if (total.worst_body >= 0) {
+      const auto b = static_cast<std::size_t>(total.worst_body);
+      for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
+        r_body_max = std::max(r_body_max, spheres_.radius_m[i]);
+    }
+    const std::string step_note = step_size_note();
+    if (!step_note.empty()) {
+      m << "; likely cause: " << step_note;
+    } else if (r_body_max >= 5.0 * total.worst_radius) {
+      m << "; likely cause: the body's spheres range from r = " << total.worst_radius << " to "
+        << r_body_max << " m (radius ratio 1:" << r_body_max / total.worst_radius
+        << ") and the small sphere carries the body alone: make the small spheres of the clump "
+           "larger or let them stand out less, or raise youngs_modulus_pa";
+    } else {
+      m << "; likely cause: particles too soft for the load (raise youngs_modulus_pa) or a time "
+           "step too large for the impact speed (lower dt_s)";
+    }
+    fail(RunStatus::deep_overlap, total.worst_body, m.str());
+  }
+  return first_bad == std::numeric_limits<std::int64_t>::max() ? -1 : first_bad;
+}
+
+}  // namespace seedcal
