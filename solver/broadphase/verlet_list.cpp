@@ -44,88 +44,140 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
     bounds[static_cast<std::size_t>(t)] = std::max(b, bounds[static_cast<std::size_t>(t) - 1]);
   }
   std::vector<Chunk> chunks(static_cast<std::size_t>(threads));
+  // Filled by one thread once every chunk is listed: where each chunk's pairs and groups go.
+  std::vector<std::size_t> pair_offset(static_cast<std::size_t>(threads) + 1, 0);
+  std::vector<std::size_t> group_offset(static_cast<std::size_t>(threads) + 1, 0);
+  std::vector<std::uint32_t> si, sj, gs;
+  std::vector<Vec3> tangential, rolling;
+  std::vector<std::uint8_t> live;
+  const bool old_rolling = keep_rolling && !rolling_.empty();
 
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
-    int t = 0;
+    int t = 0, team = 1;
 #ifdef _OPENMP
     t = omp_get_thread_num();
+    team = omp_get_num_threads();
 #endif
-    Chunk& out = chunks[static_cast<std::size_t>(t)];
-    std::vector<Candidate> cand;
-    std::size_t s = bounds[static_cast<std::size_t>(t)];
-    const std::size_t s_end = bounds[static_cast<std::size_t>(t) + 1];
-    while (s < s_end) {
-      const std::uint32_t bi = spheres.body[s];
-      std::size_t e = s;
-      while (e < s_end && spheres.body[e] == bi) ++e;
-      cand.clear();
-      for (std::size_t a = s; a < e; ++a) {
-        const Vec3& pa = spheres.position_m[a];
-        const double ra = spheres.radius_m[a];
-        const auto c = grid_.cell_of(pa);
-        for (int dz = -1; dz <= 1; ++dz) {
-          const int z = c[2] + dz;
-          if (z < 0 || z >= dims[2]) continue;
-          for (int dy = -1; dy <= 1; ++dy) {
-            const int y = c[1] + dy;
-            if (y < 0 || y >= dims[1]) continue;
-            for (int dx = -1; dx <= 1; ++dx) {
-              const int x = c[0] + dx;
-              if (x < 0 || x >= dims[0]) continue;
-              const int cell = grid_.linear(x, y, z);
-              for (std::uint32_t k = start[static_cast<std::size_t>(cell)];
-                   k < start[static_cast<std::size_t>(cell) + 1]; ++k) {
-                const std::uint32_t b = sorted[k];
-                if (spheres.body[b] <= bi) continue;
-                const double cut = ra + spheres.radius_m[b] + skin_m;
-                if ((spheres.position_m[b] - pa).squaredNorm() < cut * cut)
-                  cand.push_back({spheres.body[b], static_cast<std::uint32_t>(a), b});
+    // Chunks in turn, should the team be smaller than asked for.
+    for (int c = t; c < threads; c += team) {
+      Chunk& out = chunks[static_cast<std::size_t>(c)];
+      std::vector<Candidate> cand;
+      std::size_t s = bounds[static_cast<std::size_t>(c)];
+      const std::size_t s_end = bounds[static_cast<std::size_t>(c) + 1];
+      while (s < s_end) {
+        const std::uint32_t bi = spheres.body[s];
+        std::size_t e = s;
+        while (e < s_end && spheres.body[e] == bi) ++e;
+        cand.clear();
+        for (std::size_t a = s; a < e; ++a) {
+          const Vec3& pa = spheres.position_m[a];
+          const double ra = spheres.radius_m[a];
+          const auto cell_a = grid_.cell_of(pa);
+          for (int dz = -1; dz <= 1; ++dz) {
+            const int z = cell_a[2] + dz;
+            if (z < 0 || z >= dims[2]) continue;
+            for (int dy = -1; dy <= 1; ++dy) {
+              const int y = cell_a[1] + dy;
+              if (y < 0 || y >= dims[1]) continue;
+              for (int dx = -1; dx <= 1; ++dx) {
+                const int x = cell_a[0] + dx;
+                if (x < 0 || x >= dims[0]) continue;
+                const int cell = grid_.linear(x, y, z);
+                for (std::uint32_t k = start[static_cast<std::size_t>(cell)];
+                     k < start[static_cast<std::size_t>(cell) + 1]; ++k) {
+                  const std::uint32_t b = sorted[k];
+                  if (spheres.body[b] <= bi) continue;
+                  const double cut = ra + spheres.radius_m[b] + skin_m;
+                  if ((spheres.position_m[b] - pa).squaredNorm() < cut * cut)
+                    cand.push_back({spheres.body[b], static_cast<std::uint32_t>(a), b});
+                }
               }
             }
           }
         }
+        std::sort(cand.begin(), cand.end());
+        for (std::size_t k = 0; k < cand.size(); ++k) {
+          if (k == 0 || cand[k].body_j != cand[k - 1].body_j) out.group_sizes.push_back(0);
+          ++out.group_sizes.back();
+          out.si.push_back(cand[k].si);
+          out.sj.push_back(cand[k].sj);
+        }
+        s = e;
       }
-      std::sort(cand.begin(), cand.end());
-      for (std::size_t k = 0; k < cand.size(); ++k) {
-        if (k == 0 || cand[k].body_j != cand[k - 1].body_j) out.group_sizes.push_back(0);
-        ++out.group_sizes.back();
-        out.si.push_back(cand[k].si);
-        out.sj.push_back(cand[k].sj);
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t c = 0; c < chunks.size(); ++c) {
+        pair_offset[c + 1] = pair_offset[c] + chunks[c].si.size();
+        group_offset[c + 1] = group_offset[c] + chunks[c].group_sizes.size();
       }
-      s = e;
+      const std::size_t pairs = pair_offset.back();
+      si.resize(pairs);
+      sj.resize(pairs);
+      gs.resize(group_offset.back() + 1);
+      gs.back() = static_cast<std::uint32_t>(pairs);
+      tangential.resize(pairs);
+      rolling.resize(keep_rolling ? pairs : 0);
+      live.resize(pairs);
+      built_at_.resize(n);
+    }  // (implicit barrier)
+    // Each chunk in place, in chunk order, with the old history of its pairs: both lists are
+    // ordered by (body_i, body_j, sphere_i, sphere_j) and a chunk holds the pairs of one range of
+    // bodies, so its part of the old list is one range too, merged linearly on the same key. The
+    // arrays are zeroed here, by the thread that writes them next.
+    auto key = [&](std::uint32_t a, std::uint32_t b) {
+      return std::make_tuple(spheres.body[a], spheres.body[b], a, b);
+    };
+    for (int c = t; c < threads; c += team) {
+      const Chunk& ch = chunks[static_cast<std::size_t>(c)];
+      const std::size_t off = pair_offset[static_cast<std::size_t>(c)];
+      std::copy(ch.si.begin(), ch.si.end(), si.begin() + static_cast<std::ptrdiff_t>(off));
+      std::copy(ch.sj.begin(), ch.sj.end(), sj.begin() + static_cast<std::ptrdiff_t>(off));
+      std::size_t g = group_offset[static_cast<std::size_t>(c)];
+      std::size_t at = off;
+      for (std::uint32_t size : ch.group_sizes) {
+        gs[g++] = static_cast<std::uint32_t>(at);
+        at += size;
+      }
+      // The old pairs whose first sphere belongs to this chunk's bodies.
+      const std::size_t s_begin = bounds[static_cast<std::size_t>(c)];
+      const std::size_t s_end = bounds[static_cast<std::size_t>(c) + 1];
+      const auto old_at = [&](std::size_t sphere) {
+        if (sphere >= n) return si_.size();
+        const std::uint32_t body = spheres.body[sphere];
+        return static_cast<std::size_t>(
+            std::lower_bound(si_.begin(), si_.end(), body,
+                             [&](std::uint32_t a, std::uint32_t b) { return spheres.body[a] < b; }) -
+            si_.begin());
+      };
+      std::size_t o = s_begin < s_end ? old_at(s_begin) : si_.size();
+      const std::size_t o_end = s_begin < s_end ? old_at(s_end) : si_.size();
+      for (std::size_t k = off; k < off + ch.si.size(); ++k) {
+        Vec3 tk = Vec3::Zero(), rk = Vec3::Zero();
+        if (o < o_end) {
+          const auto kn = key(si[k], sj[k]);
+          while (o < o_end && key(si_[o], sj_[o]) < kn) ++o;
+          if (o < o_end && si_[o] == si[k] && sj_[o] == sj[k]) {
+            tk = tangential_[o];
+            if (old_rolling) rk = rolling_[o];
+          }
+        }
+        tangential[k] = tk;
+        if (keep_rolling) rolling[k] = rk;
+        live[k] = tk.isZero(0.0) ? 0 : 1;
+      }
+      for (std::size_t i = s_begin; i < s_end; ++i) built_at_[i] = spheres.position_m[i];
     }
   }
 
-  // Concatenate in chunk order and merge the old history into the new list.
-  std::vector<std::uint32_t> si, sj, gs;
-  gs.push_back(0);
-  for (const Chunk& c : chunks) {
-    si.insert(si.end(), c.si.begin(), c.si.end());
-    sj.insert(sj.end(), c.sj.begin(), c.sj.end());
-    for (std::uint32_t g : c.group_sizes) gs.push_back(gs.back() + g);
-  }
-  std::vector<Vec3> tangential(si.size(), Vec3::Zero());
-  std::vector<Vec3> rolling(keep_rolling ? si.size() : 0, Vec3::Zero());
-  auto key = [&](std::uint32_t a, std::uint32_t b) {
-    return std::make_tuple(spheres.body[a], spheres.body[b], a, b);
-  };
-  std::size_t o = 0;
-  for (std::size_t k = 0; k < si.size() && o < si_.size(); ++k) {
-    const auto kn = key(si[k], sj[k]);
-    while (o < si_.size() && key(si_[o], sj_[o]) < kn) ++o;
-    if (o < si_.size() && si_[o] == si[k] && sj_[o] == sj[k]) {
-      tangential[k] = tangential_[o];
-      if (keep_rolling && !rolling_.empty()) rolling[k] = rolling_[o];
-    }
-  }
   si_ = std::move(si);
   sj_ = std::move(sj);
   group_start_ = std::move(gs);
   tangential_ = std::move(tangential);
   rolling_ = std::move(rolling);
-  mark_live();
-  built_at_ = spheres.position_m;
+  live_ = std::move(live);
   ++builds_;
 }
 

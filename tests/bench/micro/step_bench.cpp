@@ -39,9 +39,12 @@ void BM_Step(benchmark::State& state) {
   opt.threads = static_cast<int>(state.range(0));
   opt.contact.rolling = RollingModel::cdt;
   opt.seed = 1;
+  opt.profile = true;
   Simulation sim(testing::make_table(m, 2.0e10, 0.3), opt);
   testing::add_random_bed(sim, lattice_bed(), m.density_kg_m3);
   sim.run(2000);
+  const StepProfile before = sim.profile();
+  const std::size_t builds_before = sim.neighbour_builds();
   for (auto _ : state)
     if (!sim.step()) {
       state.SkipWithError(sim.failure().message.c_str());
@@ -51,6 +54,15 @@ void BM_Step(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * spheres);
   state.counters["contacts_per_sphere"] =
       2.0 * static_cast<double>(sim.stats().sphere_contacts) / static_cast<double>(spheres);
+  // Microseconds a step in each phase (StepProfile), and neighbour builds per 1,000 steps.
+  const double steps = static_cast<double>(state.iterations());
+  const StepProfile& p = sim.profile();
+  state.counters["integrate_us"] = 1e6 * (p.integrate_s - before.integrate_s) / steps;
+  state.counters["contact_us"] = 1e6 * (p.contact_s - before.contact_s) / steps;
+  state.counters["reduce_us"] = 1e6 * (p.reduce_s - before.reduce_s) / steps;
+  state.counters["neighbour_us"] = 1e6 * (p.neighbour_s - before.neighbour_s) / steps;
+  state.counters["builds_per_1000"] =
+      1000.0 * static_cast<double>(sim.neighbour_builds() - builds_before) / steps;
 }
 BENCHMARK(BM_Step)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->MinTime(0.5);
 
