@@ -15,13 +15,7 @@ namespace {
 std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps, int simd_lanes = 8,
                           NormalModel normal = NormalModel::hertz_mindlin,
                           RollingModel rolling = RollingModel::cdt) {
-  testing::MaterialSpec m;
-  m.density_kg_m3 = 1340.0;
-  m.youngs_modulus_pa = 1.65e8;
-  m.poisson_ratio = 0.4;
-  m.restitution = 0.45;
-  m.static_friction = 0.55;
-  m.rolling_friction = 0.05;
+  const testing::MaterialSpec m = testing::table6_seed();
   SimulationOptions opt;
   opt.threads = threads;
   opt.seed = seed;

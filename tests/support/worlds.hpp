@@ -16,6 +16,19 @@ struct MaterialSpec {
   double rolling_friction = 0.0;
 };
 
+// The paper's Table 6 seed and seed-seed contact (Jinong 1): density 1340 kg/m3, E 1.65e8 Pa,
+// nu 0.4, restitution 0.45, static friction 0.55, rolling friction 0.05.
+inline MaterialSpec table6_seed() {
+  MaterialSpec m;
+  m.density_kg_m3 = 1340.0;
+  m.youngs_modulus_pa = 1.65e8;
+  m.poisson_ratio = 0.4;
+  m.restitution = 0.45;
+  m.static_friction = 0.55;
+  m.rolling_friction = 0.05;
+  return m;
+}
+
 // Material 0 for the particles; material 1 for walls (its own modulus, same interaction
 // coefficients with material 0).
 inline InteractionTable make_table(const MaterialSpec& m, double wall_modulus_pa = -1.0,

@@ -11,17 +11,6 @@
 namespace seedcal {
 namespace {
 
-testing::MaterialSpec seed_material() {
-  testing::MaterialSpec m;
-  m.density_kg_m3 = 1340.0;
-  m.youngs_modulus_pa = 1.65e8;
-  m.poisson_ratio = 0.4;
-  m.restitution = 0.45;
-  m.static_friction = 0.55;
-  m.rolling_friction = 0.05;
-  return m;
-}
-
 testing::BedSpec lattice_bed() {
   testing::BedSpec b;
   b.nx = b.ny = b.nz = 16;
@@ -33,7 +22,7 @@ testing::BedSpec lattice_bed() {
 }
 
 void BM_Step(benchmark::State& state) {
-  const testing::MaterialSpec m = seed_material();
+  const testing::MaterialSpec m = testing::table6_seed();
   SimulationOptions opt;
   opt.dt_s = 1e-6;
   opt.threads = static_cast<int>(state.range(0));
@@ -67,7 +56,7 @@ void BM_Step(benchmark::State& state) {
 BENCHMARK(BM_Step)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->MinTime(0.5);
 
 void BM_VerletBuild(benchmark::State& state) {
-  const testing::MaterialSpec m = seed_material();
+  const testing::MaterialSpec m = testing::table6_seed();
   SimulationOptions opt;
   opt.dt_s = 1e-6;
   Simulation sim(testing::make_table(m), opt);
