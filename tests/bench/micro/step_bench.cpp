@@ -1,7 +1,8 @@
 // Whole steps of a bed of 4,096 lone spheres in a box (Table 6's seed contact, Hertz-Mindlin
 // with CDT rolling friction, dt 1e-6 s), on one and two threads: sphere-steps per second. The
 // bed starts on a jittered lattice at contact and has 2,000 steps to settle into its contacts
-// before the timing; it keeps evolving under gravity while timed, as a running scene does. And the
+// before the timing; it keeps evolving under gravity while timed, as a running scene does. The
+// same spheres as one bed or two, to measure the pairs across the threads' split. And the
 // neighbour-list build (broadphase/verlet_list.hpp) alone on the same spheres.
 #include <benchmark/benchmark.h>
 
@@ -21,16 +22,19 @@ testing::BedSpec lattice_bed() {
   return b;
 }
 
-void BM_Step(benchmark::State& state) {
-  const testing::MaterialSpec m = testing::table6_seed();
+SimulationOptions step_options(int threads) {
   SimulationOptions opt;
   opt.dt_s = 1e-6;
-  opt.threads = static_cast<int>(state.range(0));
+  opt.threads = threads;
   opt.contact.rolling = RollingModel::cdt;
   opt.seed = 1;
   opt.profile = true;
-  Simulation sim(testing::make_table(m, 2.0e10, 0.3), opt);
-  testing::add_random_bed(sim, lattice_bed(), m.density_kg_m3);
+  return opt;
+}
+
+// 2,000 steps to settle, then one step per iteration; sphere-steps per second, and the
+// microseconds a step in each phase (StepProfile) with the neighbour builds per 1,000 steps.
+void time_steps(benchmark::State& state, Simulation& sim) {
   sim.run(2000);
   const StepProfile before = sim.profile();
   const std::size_t builds_before = sim.neighbour_builds();
@@ -43,7 +47,6 @@ void BM_Step(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * spheres);
   state.counters["contacts_per_sphere"] =
       2.0 * static_cast<double>(sim.stats().sphere_contacts) / static_cast<double>(spheres);
-  // Microseconds a step in each phase (StepProfile), and neighbour builds per 1,000 steps.
   const double steps = static_cast<double>(state.iterations());
   const StepProfile& p = sim.profile();
   state.counters["integrate_us"] = 1e6 * (p.integrate_s - before.integrate_s) / steps;
@@ -53,7 +56,50 @@ void BM_Step(benchmark::State& state) {
   state.counters["builds_per_1000"] =
       1000.0 * static_cast<double>(sim.neighbour_builds() - builds_before) / steps;
 }
+
+void BM_Step(benchmark::State& state) {
+  const testing::MaterialSpec m = testing::table6_seed();
+  Simulation sim(testing::make_table(m, 2.0e10, 0.3), step_options(static_cast<int>(state.range(0))));
+  testing::add_random_bed(sim, lattice_bed(), m.density_kg_m3);
+  time_steps(state, sim);
+}
 BENCHMARK(BM_Step)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->MinTime(0.5);
+
+// What the pairs across the threads' split cost: a 16 x 16 x 16 lattice on a floor, inserted as
+// its two halves in y (no spatial sort), so that each of two threads takes one half; either the
+// halves touch (one bed: a plane of 256 bodies on each side whose pairs cross between the
+// threads) or they stand 0.2 m apart (two beds: no pair crosses). The body pass has the same work
+// in both; the contacts differ a little (the apart halves have no neighbour to lean on). Compare
+// each with its own one-thread run.
+void BM_StepSplit(benchmark::State& state) {
+  const bool apart = state.range(1) != 0;
+  const testing::MaterialSpec m = testing::table6_seed();
+  SimulationOptions opt = step_options(static_cast<int>(state.range(0)));
+  opt.sort_interval_steps = 0;
+  Simulation sim(testing::make_table(m, 2.0e10, 0.3), opt);
+  const testing::BedSpec b = lattice_bed();
+  const double pitch = b.spacing * b.radius_m;
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto& rng = sim.rng();
+  for (int half = 0; half < 2; ++half)
+    for (int k = 0; k < b.nz; ++k)
+      for (int j = half * b.ny / 2; j < (half + 1) * b.ny / 2; ++j)
+        for (int i = 0; i < b.nx; ++i) {
+          BodyDef d = sphere_body(b.radius_m, m.density_kg_m3, 0);
+          d.position_m = Vec3((i + 0.5) * pitch, (j + 0.5) * pitch + (apart ? 0.2 * half : 0.0),
+                              (k + 0.5) * pitch) +
+                         b.jitter * b.radius_m * Vec3(u(rng), u(rng), u(rng));
+          d.velocity_m_s = b.speed_m_s * Vec3(u(rng), u(rng), u(rng));
+          sim.add_body(d);
+        }
+  sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
+  time_steps(state, sim);
+}
+BENCHMARK(BM_StepSplit)
+    ->ArgNames({"threads", "apart"})
+    ->ArgsProduct({{1, 2}, {0, 1}})
+    ->UseRealTime()
+    ->MinTime(0.5);
 
 void BM_VerletBuild(benchmark::State& state) {
   const testing::MaterialSpec m = testing::table6_seed();
