@@ -181,7 +181,7 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; the force reduction turns the
   // body's total into its rolling torque (contact/rolling_cdt.hpp).
   {
-    // A starts at zero: the force reduction clears it (Simulation::compute_forces).
+    // A starts at zero: the force reduction clears it (Simulation::reduce_forces).
     BodyAccumulator* __restrict A = s.thread_body_acc_[static_cast<std::size_t>(t)].data();
     // Every write to A marks its body here (the reduction reads only marked accumulators).
     std::uint8_t* __restrict touched = s.thread_body_touched_[static_cast<std::size_t>(t)].data();

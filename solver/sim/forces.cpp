@@ -21,9 +21,7 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   // Inside step() the views were refreshed by the body pass (or after a spatial sort).
   if (!mid_step) refresh_views(0.0);
-  update_work_shares();
-  prepare_contact_pass(*this, contact_pass_);
-  if (options_.contact.rolling == RollingModel::cdt) cdt_torque_per_capacity_.resize(bodies_.size());
+  prepare_forces();
   // The torques computed now act over the second half of this step and the first half of the
   // next (velocity Verlet): over dt from mid-step, over dt/2 when the velocities are at the force
   // time (the first call).
@@ -32,15 +30,26 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   std::int64_t first_bad = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel num_threads(nt) if (nt > 1) reduction(min : first_bad)
   {
-    const int t = omp_get_thread_num(), team = omp_get_num_threads();
-    run_contact_pass(*this, contact_pass_, t, team);
-#pragma omp barrier
-    if (t == 0) lap(prof, t0, profile_.contact_s);
-    reduce_forces(t, team, h, first_bad);
+    forces_in_region(omp_get_thread_num(), omp_get_num_threads(), h, t0, first_bad);
   }
   first_bad = finish_forces(mid_step, first_bad);
   lap(prof, t0, profile_.reduce_s);
   return first_bad;
+}
+
+void Simulation::prepare_forces() {
+  update_work_shares();
+  prepare_contact_pass(*this, contact_pass_);
+  if (options_.contact.rolling == RollingModel::cdt) cdt_torque_per_capacity_.resize(bodies_.size());
+}
+
+void Simulation::forces_in_region(int thread, int team, double h,
+                                  std::chrono::steady_clock::time_point& t0,
+                                  std::int64_t& first_bad) {
+  run_contact_pass(*this, contact_pass_, thread, team);
+#pragma omp barrier
+  if (thread == 0) lap(options_.profile, t0, profile_.contact_s);
+  reduce_forces(thread, team, h, first_bad);
 }
 
 void Simulation::reduce_forces(int thread, int team, double h, std::int64_t& first_bad) {

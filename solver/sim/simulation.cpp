@@ -397,10 +397,9 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
 }
 
 void Simulation::update_work_shares() {
+  if (shares_version_ == lists_version_) return;
   const auto nt = static_cast<std::size_t>(std::max(1, options_.threads));
   const std::size_t nb = bodies_.size();
-  if (shares_version_ == lists_version_ && work_shares_.size() == nt && shares_bodies_ == nb)
-    return;
   const std::uint32_t* body_of_sphere = spheres_.body.data();
   const auto& gs = pairs_.group_start();
   const auto& si = pairs_.si();
@@ -412,7 +411,6 @@ void Simulation::update_work_shares() {
       nb, nt);
   split_bodies_by_spheres(bodies_.first_sphere, nb, work_shares_);
   shares_version_ = lists_version_;
-  shares_bodies_ = nb;
 }
 
 // One step: the first half of velocity Verlet for every body (with the last step's pending
@@ -446,11 +444,9 @@ bool Simulation::step() {
   // Skin check against the centres at the last neighbour build (none after a renumbering).
   const std::vector<Vec3>& built = pairs_.built_at();
   const Vec3* ref = built.size() == ns ? built.data() : nullptr;
-  // Valid for this step's forces unless the lists are rebuilt (then compute_forces() sets it up
+  // Valid for this step's forces unless the lists are rebuilt (then compute_forces() sets them up
   // again).
-  prepare_contact_pass(*this, contact_pass_);
-  const bool cdt = options_.contact.rolling == RollingModel::cdt;
-  if (cdt) cdt_torque_per_capacity_.resize(nb);
+  prepare_forces();
   step_moved_sq_.assign(static_cast<std::size_t>(nt), 0.0);
   step_bad_.assign(static_cast<std::size_t>(nt), std::numeric_limits<std::int64_t>::max());
   bool walls_moved = false, rebuild = false;
@@ -481,12 +477,7 @@ bool Simulation::step() {
       rebuild = rebuild_now;
       lap(prof, t0, profile_.integrate_s);
     }
-    if (!rebuild_now && !walls_moved && !sort_due) {
-      run_contact_pass(*this, contact_pass_, t, team);
-#pragma omp barrier
-      if (t == 0) lap(prof, t0, profile_.contact_s);
-      reduce_forces(t, team, dt, force_bad);
-    }
+    if (!rebuild_now && !walls_moved && !sort_due) forces_in_region(t, team, dt, t0, force_bad);
   }
   std::int64_t first_bad = -1;
   if (rebuild || walls_moved || sort_due) {

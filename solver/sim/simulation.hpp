@@ -2,6 +2,7 @@
 // A Simulation is a value that owns its whole state: bodies, spheres, walls, neighbour lists and
 // contact history, options, random generator and log sink. No global state, so many simulations
 // can run in one process (DESIGN.md, STYLE.md).
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -136,18 +137,16 @@ class Simulation {
   friend struct ForceKernel;
   void update_sphere_positions();
   void ensure_ready();
-  // The first half of a velocity Verlet step for every body (kick, drift, rotation), fused with
-  // placing its spheres and refreshing the contact views. Returns true when some sphere moved
-  // more than half the skin since the neighbour list was built.
-  // Also applies a pending second half kick of the previous step first (finish_kick()), and sets
-  // `first_bad` to the lowest body whose new state is not finite (or -1).
-  // The body pass of step() over bodies [b_begin, b_end) (one thread's range): sets max_moved_sq
-  // to at least the largest squared displacement of their spheres since `ref` (the centres at the
-  // last neighbour build; null: none) and `bad` to at most the lowest body whose new state is not
-  // finite.
+  // The body pass of step() over bodies [b_begin, b_end) (one thread's range): the first half of
+  // a velocity Verlet step (kick, drift, rotation) after the previous step's pending second half
+  // kick (`kick`, over hk; finish_kick()), fused with placing the spheres and refreshing the
+  // contact views. Sets max_moved_sq to at least the largest squared displacement of their
+  // spheres since `ref` (the centres at the last neighbour build; null: none) and `bad` to at most
+  // the lowest body whose new state is not finite.
   void move_bodies(std::size_t b_begin, std::size_t b_end, double dt, bool kick, double hk,
                    const Vec3* ref, double& max_moved_sq, std::int64_t& bad);
-  // Recomputes work_shares_ when the lists, the bodies or the thread count changed.
+  // Recomputes work_shares_ when the lists changed (a rebuild or a renumbering; adding or
+  // removing bodies always ends in one).
   void update_work_shares();
   // The second half kick of velocity Verlet, v += dt/2 F / m and L += dt/2 T with the forces just
   // computed, is left pending at the end of step(): the next step's first half kick follows it in
@@ -165,6 +164,14 @@ class Simulation {
   // false when the velocities are already at the force time (then nothing is kicked).
   // Returns the lowest body whose force or torque is not finite, or -1.
   std::int64_t compute_forces(bool mid_step);
+  // The one-thread set-up of a step's forces: the threads' shares, the contact pass's arguments,
+  // CDT's per-body buffer.
+  void prepare_forces();
+  // Inside a parallel region (or alone): thread `thread` of `team` computes the contacts of its
+  // shares, waits for the others, and sums its bodies' forces (reduce_forces()); the master
+  // thread takes the contact phase's lap.
+  void forces_in_region(int thread, int team, double h,
+                        std::chrono::steady_clock::time_point& t0, std::int64_t& first_bad);
   // Thread `thread` of a team of `team`, after the contact pass: the forces and torques of its
   // shares' bodies summed over the threads' accumulators (CDT torques over dt `h`), and its wall
   // contacts' rolling-torque reactions. Lowers first_bad to a body whose sum is not finite.
@@ -227,7 +234,6 @@ class Simulation {
   // lists change (lists_version_ counts rebuilds and renumberings).
   std::vector<WorkShare> work_shares_;
   std::uint64_t lists_version_ = 0, shares_version_ = ~std::uint64_t{0};
-  std::size_t shares_bodies_ = 0;
   // Per thread, the body pass's largest squared sphere displacement and lowest bad body.
   std::vector<double> step_moved_sq_;
   std::vector<std::int64_t> step_bad_;

@@ -102,7 +102,6 @@ void Simulation::reorder_bodies(const std::vector<std::uint32_t>& old_of_new) {
   if (ready_) {
     pairs_.renumber(sphere_new_of_old, spheres_);
     wall_pairs_.renumber(sphere_new_of_old, spheres_);
-    ++lists_version_;
     size_thread_buffers();
     rebuild_lists();
   }

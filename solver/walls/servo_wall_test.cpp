@@ -21,12 +21,9 @@ TEST(ServoWall, HoldsTwoHundredKilopascalsOnASettledBed) {
   // overlap under that load is (3 F / (4 E* sqrt(R*)))^(2/3) ~ 0.1 mm, 5 % of the radius: the
   // material is stiff enough for the load. The time-averaged normal stress over the last 20 ms
   // must be within 2 % of the target.
-  testing::MaterialSpec m;
-  m.density_kg_m3 = 1340.0;
-  m.youngs_modulus_pa = 1.65e8;
-  m.poisson_ratio = 0.4;
-  m.restitution = 0.45;
+  testing::MaterialSpec m = testing::table6_seed();
   m.static_friction = 0.5;
+  m.rolling_friction = 0.0;
   SimulationOptions opt;
   opt.dt_s = 2e-6;
   opt.seed = 3;

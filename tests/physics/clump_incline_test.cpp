@@ -34,11 +34,7 @@ constexpr double kR = 0.002;  // sphere radius, m (a seed-sized clump)
 // paper's Table 6 Jinong 1 values), gravity tilted by theta about y (downhill is +x).
 Simulation incline(const std::vector<SphereXYZR>& spheres, double mu_s, double mu_r, double theta_deg,
                    bool lever_from_centre_of_mass = false) {
-  testing::MaterialSpec m;
-  m.density_kg_m3 = 1340.0;
-  m.youngs_modulus_pa = 1.65e8;
-  m.poisson_ratio = 0.4;
-  m.restitution = 0.45;
+  testing::MaterialSpec m = testing::table6_seed();
   m.static_friction = mu_s;
   m.rolling_friction = mu_r;
   InteractionTable table = testing::make_table(m, 2e10, 0.3);

@@ -23,7 +23,9 @@ inline void add_box_walls(Simulation& sim, double lx, double ly) {
   sim.add_wall(plane_wall(Vec3(0, ly, 0), -Vec3::UnitY()));
 }
 
-inline void add_random_bed(Simulation& sim, const BedSpec& b, double density_kg_m3) {
+// The bed's spheres without walls, the lattice moved by `origin_m`.
+inline void add_lattice_spheres(Simulation& sim, const BedSpec& b, double density_kg_m3,
+                                const Vec3& origin_m = Vec3::Zero()) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   auto& rng = sim.rng();
   const double pitch = b.spacing * b.radius_m;
@@ -31,11 +33,16 @@ inline void add_random_bed(Simulation& sim, const BedSpec& b, double density_kg_
     for (int j = 0; j < b.ny; ++j)
       for (int i = 0; i < b.nx; ++i) {
         BodyDef d = sphere_body(b.radius_m, density_kg_m3, 0);
-        d.position_m = Vec3((i + 0.5) * pitch, (j + 0.5) * pitch, (k + 0.5) * pitch) +
+        d.position_m = origin_m + Vec3((i + 0.5) * pitch, (j + 0.5) * pitch, (k + 0.5) * pitch) +
                        b.jitter * b.radius_m * Vec3(u(rng), u(rng), u(rng));
         d.velocity_m_s = b.speed_m_s * Vec3(u(rng), u(rng), u(rng));
         sim.add_body(d);
       }
+}
+
+inline void add_random_bed(Simulation& sim, const BedSpec& b, double density_kg_m3) {
+  add_lattice_spheres(sim, b, density_kg_m3);
+  const double pitch = b.spacing * b.radius_m;
   add_box_walls(sim, b.nx * pitch, b.ny * pitch);
 }
 

@@ -77,21 +77,12 @@ void BM_StepSplit(benchmark::State& state) {
   SimulationOptions opt = step_options(static_cast<int>(state.range(0)));
   opt.sort_interval_steps = 0;
   Simulation sim(testing::make_table(m, 2.0e10, 0.3), opt);
-  const testing::BedSpec b = lattice_bed();
-  const double pitch = b.spacing * b.radius_m;
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  auto& rng = sim.rng();
-  for (int half = 0; half < 2; ++half)
-    for (int k = 0; k < b.nz; ++k)
-      for (int j = half * b.ny / 2; j < (half + 1) * b.ny / 2; ++j)
-        for (int i = 0; i < b.nx; ++i) {
-          BodyDef d = sphere_body(b.radius_m, m.density_kg_m3, 0);
-          d.position_m = Vec3((i + 0.5) * pitch, (j + 0.5) * pitch + (apart ? 0.2 * half : 0.0),
-                              (k + 0.5) * pitch) +
-                         b.jitter * b.radius_m * Vec3(u(rng), u(rng), u(rng));
-          d.velocity_m_s = b.speed_m_s * Vec3(u(rng), u(rng), u(rng));
-          sim.add_body(d);
-        }
+  testing::BedSpec half = lattice_bed();
+  half.ny /= 2;
+  const double pitch = half.spacing * half.radius_m;
+  testing::add_lattice_spheres(sim, half, m.density_kg_m3);
+  testing::add_lattice_spheres(sim, half, m.density_kg_m3,
+                               Vec3(0.0, half.ny * pitch + (apart ? 0.2 : 0.0), 0.0));
   sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
   time_steps(state, sim);
 }
