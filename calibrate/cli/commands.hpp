@@ -16,6 +16,10 @@ struct GlobalOptions {
   std::uint64_t seed = 1;
   bool seed_given = false;
   int resolved_threads() const;
+  // Threads per simulation when `jobs` simulations run at once: one each (a run's CPU time is read
+  // from its own thread's clock, solver/scenes/scene_common.hpp); --threads above 1 with more than
+  // one job is bad input (InputError).
+  int threads_per_job(int jobs) const;
 };
 
 // Adds --threads and --seed to a subcommand.

@@ -1,5 +1,6 @@
 // seedcal: calibrates DEM models of seeds. One binary, subcommands (DESIGN.md, "Interface").
 #include <iostream>
+#include <string>
 #include <thread>
 
 #include "calibrate/cli/commands.hpp"
@@ -12,6 +13,15 @@ int GlobalOptions::resolved_threads() const {
   if (threads > 0) return threads;
   const unsigned n = std::thread::hardware_concurrency();
   return n > 0 ? static_cast<int>(n) : 1;
+}
+
+int GlobalOptions::threads_per_job(int jobs) const {
+  if (jobs <= 1) return resolved_threads();
+  if (threads > 1)
+    throw InputError("--threads = " + std::to_string(threads) + " with --jobs = " + std::to_string(jobs) +
+                     ": simulations run at once are one thread each (allowed: --threads 1), so that each "
+                     "run's CPU time is its own");
+  return 1;
 }
 
 void add_common_options(CLI::App& sub, GlobalOptions& g) {

@@ -121,14 +121,17 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
       ->check(CLI::Range(0.0, 1.0))->capture_default_str();
   tr->add_option("--repeats", t->o.repeats, "seeds per row")->check(CLI::Range(1, 1000))->capture_default_str();
   tr->add_option("--out", t->out, "output directory")->capture_default_str();
+  tr->add_option("--jobs", t->o.jobs, "a row's repeats at once, one thread each (default 1)")
+      ->check(CLI::Range(1, 1000))->capture_default_str();
   add_common_options(*tr, g);
   tr->callback([t, &g] {
-    t->o.threads = g.resolved_threads();
+    t->o.threads = g.threads_per_job(t->o.jobs);
     t->o.seed = g.seed;
     t->o.out_dir = t->out;
     check_file("--scene", t->o.scene);
     auto j = tradeoff_study(t->o);
-    j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", t->o.threads}};
+    j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", t->o.threads},
+                       {"jobs", t->o.jobs}};
     write_study("tradeoff", j, tradeoff_csv(j), t->out);
   });
 
@@ -148,7 +151,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
       ->check(CLI::Range(1, 1000))->capture_default_str();
   add_common_options(*te, g);
   te->callback([tn, &g] {
-    tn->o.threads = g.threads > 0 ? g.threads : (tn->o.jobs > 1 ? 1 : g.resolved_threads());
+    tn->o.threads = g.threads_per_job(tn->o.jobs);
     tn->o.seed = g.seed;
     tn->o.out_dir = tn->out;
     check_file("--scene", tn->o.scene);

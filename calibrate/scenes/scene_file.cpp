@@ -54,14 +54,17 @@ void check_scene(const SceneFile& f) {
   run_with(f, ctx, 1);
 }
 
-nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir) {
+nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir,
+                         int jobs) {
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-  return run_with(f, SceneContext{f.path, out_dir, threads, seed, {}}, repeats > 0 ? repeats : f.repeats);
+  SceneContext ctx{f.path, out_dir, threads, seed, {}};
+  ctx.jobs = jobs;
+  return run_with(f, ctx, repeats > 0 ? repeats : f.repeats);
 }
 
 nlohmann::json run_scene_file(const std::string& path, const std::vector<std::string>& sets, int threads,
-                              std::uint64_t seed, int repeats, const std::string& out_dir) {
-  return run_scene(load_scene_file(path, sets), threads, seed, repeats, out_dir);
+                              std::uint64_t seed, int repeats, const std::string& out_dir, int jobs) {
+  return run_scene(load_scene_file(path, sets), threads, seed, repeats, out_dir, jobs);
 }
 
 }  // namespace seedcal

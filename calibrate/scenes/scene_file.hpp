@@ -29,11 +29,12 @@ SceneFile load_scene_file(const std::string& path, const std::vector<std::string
 // InputError naming the file, key, value and range for the first bad one; runs nothing.
 void check_scene(const SceneFile& scene);
 
-// Runs `repeats` seeds (seed, seed + 1, ...); repeats = 0: the file's own `repeats`.
+// Runs `repeats` seeds (seed, seed + 1, ...), `jobs` at a time; repeats = 0: the file's own
+// `repeats`.
 nlohmann::json run_scene(const SceneFile& scene, int threads, std::uint64_t seed, int repeats,
-                         const std::string& out_dir = "");
+                         const std::string& out_dir = "", int jobs = 1);
 
 nlohmann::json run_scene_file(const std::string& path, const std::vector<std::string>& sets, int threads,
-                              std::uint64_t seed, int repeats, const std::string& out_dir = "");
+                              std::uint64_t seed, int repeats, const std::string& out_dir = "", int jobs = 1);
 
 }  // namespace seedcal

@@ -1,6 +1,10 @@
 #include "calibrate/scenes/scene_registry.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <exception>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +14,7 @@
 #include "calibrate/cli/version_string.hpp"
 #include "calibrate/config/output_config.hpp"
 #include "calibrate/output/trajectory_h5.hpp"
+#include "calibrate/scenes/job_pool.hpp"
 
 namespace seedcal {
 
@@ -78,44 +83,74 @@ void remove_non_finite(nlohmann::json& j) {
 
 }  // namespace
 
+namespace {
+
+// Run k of a series: seed ctx.seed + k, a fresh read of the config.
+nlohmann::json run_one(const SceneRunner& runner, const toml::value& doc, const std::string& config_path,
+                       const SceneContext& ctx, std::size_t k) {
+  auto diag = std::make_shared<ConfigDiagnostics>();
+  diag->file = config_path;
+  TomlReader root(doc, "", diag);
+  root.integer("repeats", 1, 1000, 1);
+  const OutputConfig output = read_output(root);
+  SceneContext c = ctx;
+  c.seed = ctx.seed + static_cast<std::uint64_t>(k);
+  // The scene's files (its CSV, picture and trajectory) come from the first run, the one whose
+  // seed the provenance names; the later runs only add their index to the statistics.
+  if (k > 0) c.out_dir.clear();
+  // The trajectory of the first run (its seed is the one metrics.json's provenance names). The
+  // writer finishes (writes the XDMF) when it goes out of scope, also when the runner throws.
+  std::optional<TrajectoryWriter> trajectory;
+  if (output.trajectory && k == 0 && !ctx.out_dir.empty()) {
+    const std::string kind =
+        doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
+    trajectory.emplace(ctx.out_dir,
+                       TrajectoryProvenance{version_string(), kind, config_path, toml::format(doc),
+                                            c.seed, ctx.threads},
+                       output.trajectory_interval_s);
+    c.observer = trajectory->observer();
+  }
+  nlohmann::json run = runner(root, c);
+  if (trajectory) {
+    trajectory->finish();
+    run["trajectory"] = {{"h5", TrajectoryWriter::kH5Name},
+                         {"xdmf", TrajectoryWriter::kXdmfName},
+                         {"frames", trajectory->frames()},
+                         {"interval_s", trajectory->interval_s()}};
+  }
+  remove_non_finite(run);
+  run["seed"] = c.seed;
+  return run;
+}
+
+}  // namespace
+
 nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
                             const std::string& config_path, const SceneContext& ctx, int repeats) {
+  const auto n = static_cast<std::size_t>(std::max(repeats, 1));
+  const auto t0 = std::chrono::steady_clock::now();
+  // A failed run (or one that throws) ends the series: the runs after it are not started, and
+  // those already under way when it fails are dropped below, so that `jobs` runs at a time give
+  // the series of one job.
+  std::vector<nlohmann::json> all(n);
+  std::atomic<std::size_t> first_failed{n};
+  const std::vector<std::exception_ptr> errors = run_jobs(n, ctx.jobs, [&](std::size_t k) {
+    if (k > first_failed.load()) return;
+    try {
+      all[k] = run_one(runner, doc, config_path, ctx, k);
+    } catch (...) {
+      lower_to(first_failed, k);
+      throw;
+    }
+    if (all[k].value("status", "ok") != "ok") lower_to(first_failed, k);
+  });
   std::vector<nlohmann::json> runs;
-  for (int k = 0; k < repeats; ++k) {
-    auto diag = std::make_shared<ConfigDiagnostics>();
-    diag->file = config_path;
-    TomlReader root(doc, "", diag);
-    root.integer("repeats", 1, 1000, 1);
-    const OutputConfig output = read_output(root);
-    SceneContext c = ctx;
-    c.seed = ctx.seed + static_cast<std::uint64_t>(k);
-    // The scene's files (its CSV, picture and trajectory) come from the first run, the one whose
-    // seed the provenance names; the later runs only add their index to the statistics.
-    if (k > 0) c.out_dir.clear();
-    // The trajectory of the first run (its seed is the one metrics.json's provenance names). The
-    // writer finishes (writes the XDMF) when it goes out of scope, also when the runner throws.
-    std::optional<TrajectoryWriter> trajectory;
-    if (output.trajectory && k == 0 && !ctx.out_dir.empty()) {
-      const std::string kind =
-          doc.contains("kind") && doc.at("kind").is_string() ? doc.at("kind").as_string().str : "";
-      trajectory.emplace(ctx.out_dir,
-                         TrajectoryProvenance{version_string(), kind, config_path, toml::format(doc),
-                                              c.seed, ctx.threads},
-                         output.trajectory_interval_s);
-      c.observer = trajectory->observer();
-    }
-    runs.push_back(runner(root, c));
-    if (trajectory) {
-      trajectory->finish();
-      runs.back()["trajectory"] = {{"h5", TrajectoryWriter::kH5Name},
-                                   {"xdmf", TrajectoryWriter::kXdmfName},
-                                   {"frames", trajectory->frames()},
-                                   {"interval_s", trajectory->interval_s()}};
-    }
-    remove_non_finite(runs.back());
-    runs.back()["seed"] = c.seed;
-    if (runs.back().value("status", "ok") != "ok") break;  // a failed run ends the series
+  for (std::size_t k = 0; k < n; ++k) {
+    if (errors[k]) std::rethrow_exception(errors[k]);
+    runs.push_back(std::move(all[k]));
+    if (runs.back().value("status", "ok") != "ok") break;
   }
+  const double elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json out = runs.front();
   const std::string key = out.value("index_key", "");
   if (!key.empty()) {
@@ -141,9 +176,12 @@ nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,
     }
   }
   out["cpu_seconds"] = cpu;
-  out["wall_seconds"] = wall;
+  // One run: its own wall time. A series: from the first run's start to the last run's end, which
+  // is less than the runs' sum when they ran side by side (each run keeps its own under "runs").
+  out["wall_seconds"] = runs.size() == 1 ? wall : elapsed_s;
   out["steps"] = steps;
   out["repeats"] = runs.size();
+  out["jobs"] = std::min<std::size_t>(static_cast<std::size_t>(std::max(ctx.jobs, 1)), n);
   if (runs.size() > 1) {
     out["runs"] = runs;
     out["files_from_seed"] = ctx.seed;

@@ -20,16 +20,19 @@ struct SceneContext {
   std::uint64_t seed = 0;
   FrameObserver observer;  // the run's frames ([output] trajectory = true); runners pass it on
   bool check_only = false;  // read and validate the whole config, then return without running
+  int jobs = 1;             // run_repeated: runs at once (each with `threads` threads)
 };
 
 using SceneRunner = std::function<nlohmann::json(TomlReader& root, const SceneContext& ctx)>;
 
 const std::map<std::string, SceneRunner>& scene_registry();
 
-// Runs a scene `repeats` times with seeds seed, seed + 1, ... (a fresh config read each time) and
+// Runs a scene `repeats` times with seeds seed, seed + 1, ... (a fresh config read each time),
+// ctx.jobs runs at a time (calibrate/scenes/job_pool.hpp; the same results as one at a time), and
 // aggregates: the index (named by the runner's "index_key") becomes the mean, with
 // "<index>_sd" (sample standard deviation) and "<index>_samples"; cpu_seconds, wall_seconds and
-// steps are summed; every run's own metrics are kept under "runs". It reads the [output] table:
+// steps are summed (wall_seconds: the series' elapsed time, the runs' sum when they ran one at a
+// time); every run's own metrics are kept under "runs". It reads the [output] table:
 // with ctx.out_dir set, `trajectory = true` records the first run's trajectory there
 // (output/trajectory_h5.hpp) and its metrics gain "trajectory" (files, frames, interval).
 nlohmann::json run_repeated(const SceneRunner& runner, const toml::value& doc,

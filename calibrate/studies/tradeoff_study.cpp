@@ -28,7 +28,7 @@ nlohmann::json run_row(const TradeoffOptions& o, const std::string& set, const s
   nlohmann::json m;
   try {
     m = run_scene_file(o.scene, sets, o.threads, o.seed, o.repeats,
-                       o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name);
+                       o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name, o.jobs);
   } catch (const InputError& e) {
     if (reference) throw;
     return {{"set", set}, {"index", sample_stats({})}, {"cpu_seconds_per_run", nullptr}, {"steps_per_run", nullptr},

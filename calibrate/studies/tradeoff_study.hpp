@@ -26,6 +26,7 @@ struct TradeoffOptions {
   double tolerance = 0.05;            // relative change a user accepts
   int repeats = 3;                    // seeds seed, seed + 1, ... in every row
   int threads = 1;
+  int jobs = 1;                       // a row's repeats at once (one thread each when > 1)
   std::uint64_t seed = 1;
   std::string out_dir;                // scenes write their CSV and pictures below it
 };

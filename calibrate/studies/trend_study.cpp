@@ -7,9 +7,9 @@
 #include <exception>
 #include <limits>
 #include <sstream>
-#include <thread>
 
 #include "calibrate/cli/errors.hpp"
+#include "calibrate/scenes/job_pool.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "calibrate/studies/study_stats.hpp"
 
@@ -89,32 +89,15 @@ nlohmann::json trend_study(const TrendOptions& o) {
   // job: the results are those of one job.
   const std::size_t reps = static_cast<std::size_t>(o.repeats), tasks = n * reps;
   std::vector<nlohmann::json> run(tasks);
-  std::vector<std::exception_ptr> errors(tasks);
-  std::atomic<std::size_t> next{0};
   std::vector<std::atomic<std::size_t>> first_failed(n);  // a level's first failed seed; reps: none
   for (auto& f : first_failed) f.store(reps);
-  const auto work = [&] {
-    for (std::size_t t; (t = next++) < tasks;) {
-      const std::size_t i = t / reps, r = t % reps;
-      if (r > first_failed[i].load()) continue;  // after a failed run: not needed
-      const std::string dir = o.out_dir.empty() || r > 0 ? std::string() : o.out_dir + "/scenes/" + name[i];
-      try {
-        run[t] = run_scene(scene[i], o.threads, o.seed + r, 1, dir);
-        if (run[t].value("status", "ok") != "ok") {
-          std::size_t f = first_failed[i].load();
-          while (r < f && !first_failed[i].compare_exchange_weak(f, r)) {
-          }
-        }
-      } catch (...) {
-        errors[t] = std::current_exception();
-      }
-    }
-  };
-  {
-    std::vector<std::jthread> pool;
-    for (std::size_t k = 1; k < std::min<std::size_t>(static_cast<std::size_t>(o.jobs), tasks); ++k) pool.emplace_back(work);
-    work();
-  }
+  const std::vector<std::exception_ptr> errors = run_jobs(tasks, o.jobs, [&](std::size_t t) {
+    const std::size_t i = t / reps, r = t % reps;
+    if (r > first_failed[i].load()) return;  // after a failed run: not needed
+    const std::string dir = o.out_dir.empty() || r > 0 ? std::string() : o.out_dir + "/scenes/" + name[i];
+    run[t] = run_scene(scene[i], o.threads, o.seed + r, 1, dir);
+    if (run[t].value("status", "ok") != "ok") lower_to(first_failed[i], r);
+  });
   for (const std::exception_ptr& e : errors)
     if (e) std::rethrow_exception(e);
   nlohmann::json levels = nlohmann::json::array();
