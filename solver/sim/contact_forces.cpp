@@ -112,6 +112,8 @@ void ForceKernel::prepare(Simulation& s, ContactPass& p) {
   auto& wtang = s.wall_pairs_.tangential();
   PairBatchArgs& batch = p.batch;
   batch.spheres = reinterpret_cast<const double*>(s.sphere_view_.data());
+  batch.sphere_body = s.spheres_.body.data();
+  batch.sphere_material = s.spheres_.material.data();
   batch.bodies = reinterpret_cast<const double*>(s.body_view_.data());
   batch.pair_constants = p.batch_constants.data();
   batch.materials = nm;
@@ -143,6 +145,8 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
   // Dashpots use the predicted end-of-step velocities, springs the half-step ones
   // (contact/hertz_mindlin.hpp); both come from the packed views (sim/contact_view.hpp).
   const SphereView* __restrict SV = s.sphere_view_.data();
+  const std::uint32_t* __restrict SB = s.spheres_.body.data();       // a sphere's body
+  const std::uint16_t* __restrict SM = s.spheres_.material.data();   // and material
   const BodyView* __restrict BV = s.body_view_.data();
   const InteractionTable& table = s.table_;
   const std::size_t nw = s.walls_.size();
@@ -289,18 +293,18 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
         const double dist = std::sqrt(dist2);
         const Vec3 normal = dist > 0.0 ? Vec3(d * (1.0 / dist)) : Vec3::UnitZ();
         const double overlap = rs - dist;
-        const std::uint32_t bi = Si.body, bj = Sj.body;
-        const Vec3 cp = Si.position_m + (ri - 0.5 * overlap) * normal;
-        const Vec3 rci = cp - Si.body_position_m;
-        const Vec3 rcj = cp - Sj.body_position_m;
+        const std::uint32_t bi = SB[si[k]], bj = SB[sj[k]];
         const BodyView& Bi = BV[bi];
         const BodyView& Bj = BV[bj];
+        const Vec3 cp = Si.position_m + (ri - 0.5 * overlap) * normal;
+        const Vec3 rci = cp - Bi.position_m;
+        const Vec3 rcj = cp - Bj.position_m;
         const Vec3& wi = Bi.angular_velocity;
         const Vec3& wj = Bj.angular_velocity;
         const Vec3 vrel = (Bi.velocity_m_s + wi.cross(rci)) - (Bj.velocity_m_s + wj.cross(rcj));
         const Vec3 vrel_end = (Bi.velocity_end_m_s + Bi.angular_velocity_end.cross(rci)) -
                               (Bj.velocity_end_m_s + Bj.angular_velocity_end.cross(rcj));
-        const PairConstants& pc = table.pair(Si.material, Sj.material);
+        const PairConstants& pc = table.pair(SM[si[k]], SM[sj[k]]);
         const ContactKinematics kin{normal, overlap, ri * rj / rs, 1.0 / (Bi.inv_mass + Bj.inv_mass),
                                     vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, tang[k], dt, scale, clip);
@@ -388,7 +392,8 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
           const Vec3 normal = wall.pose.orientation * hit.normal;
           const Vec3 arm = wall.pose.orientation * hit.point;
           const Vec3 cp = wall.pose.origin_m + arm;
-          const Vec3 rc = cp - Si.body_position_m;
+          const std::uint32_t b = SB[ws[k]];
+          const Vec3 rc = cp - BV[b].position_m;
           const Vec3 v_wall = wall.velocity_at(cp);
           WallContactIn c;
           for (int i = 0; i < 3; ++i) {
@@ -398,11 +403,11 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
           }
           c.overlap_m = r - hit.distance;
           c.radius_m = r;
-          c.mass_kg = B.mass_kg[Si.body];
+          c.mass_kg = B.mass_kg[b];
           c.rolling_lever_m = lever_com ? rc.norm() : hit.distance;
           c.damping_scale = 1.0;
-          c.body = Si.body;
-          c.constants = static_cast<std::uint32_t>(Si.material * nm + wall.material);
+          c.body = b;
+          c.constants = static_cast<std::uint32_t>(SM[ws[k]] * nm + wall.material);
           c.pair = k;
           win.push_back(c);
           side.push_back({ww[a], Vec3(cp - wall.pose.origin_m)});
@@ -445,14 +450,14 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
         const double overlap = r - hit.distance;
         const Vec3 normal = wall.pose.orientation * hit.normal;
         const Vec3 cp = wall.pose.origin_m + wall.pose.orientation * hit.point;
-        const std::uint32_t b = Si.body;
-        const Vec3 rc = cp - Si.body_position_m;
+        const std::uint32_t b = SB[ws[k]];
         const BodyView& Bb = BV[b];
+        const Vec3 rc = cp - Bb.position_m;
         const Vec3& w = Bb.angular_velocity;
         const Vec3 v_wall = wall.velocity_at(cp);
         const Vec3 vrel = Bb.velocity_m_s + w.cross(rc) - v_wall;
         const Vec3 vrel_end = Bb.velocity_end_m_s + Bb.angular_velocity_end.cross(rc) - v_wall;
-        const PairConstants& pc = table.pair(Si.material, wall.material);
+        const PairConstants& pc = table.pair(SM[ws[k]], wall.material);
         const ContactKinematics kin{normal, overlap, r, B.mass_kg[b], vrel, vrel_end};
         const ContactForce cf = hertz_mindlin(pc, kin, wtang[k], dt, scale, clip);
         BodyAccumulator& Ab = A[b];

@@ -1,6 +1,6 @@
 #pragma once
-// Packed per-step copies of what the contact kernel reads and writes, one cache-line-aligned
-// record per sphere or body.
+// Packed per-step copies of what the contact kernel reads and writes: a half-line record per
+// sphere, a two-line record per body.
 //
 // The state itself is kept as structure-of-arrays (core/body_state.hpp): the integrator streams
 // through one field at a time. The contact kernel instead visits two bodies per pair in
@@ -9,6 +9,13 @@
 // and one per accumulator. The records are refreshed in the integrator's body pass, which already
 // has every field in registers, so they cost one streaming write per body and step. The
 // arithmetic on them is the same as on the arrays: results do not change.
+//
+// Only what changes every step is in them. A sphere's body and material never change between
+// spatial sorts and are read from the sphere arrays (core/sphere_state.hpp), which no core writes
+// while the others read them; the lever arms take the body's centre from its body record. So a
+// clump's spheres take half a line each, not a line: half the bytes through the body pass, and
+// half the lines that move between the cores for the bodies next to the threads' split (a line
+// that one core writes and another reads crosses twice a step; tests/bench/README.md).
 #include <cstddef>
 #include <cstdint>
 
@@ -18,13 +25,10 @@
 
 namespace seedcal {
 
-// One sphere, as the contact kernel sees it (64 bytes).
-struct alignas(64) SphereView {
-  Vec3 position_m;       // world centre
+// One sphere, as the contact kernel sees it (32 bytes: two to a cache line).
+struct alignas(32) SphereView {
+  Vec3 position_m;  // world centre
   double radius_m;
-  Vec3 body_position_m;  // its body's centre of mass (contact lever arms)
-  std::uint32_t body;
-  std::uint16_t material;
 };
 
 // One body's velocities, as the contact kernel sees it (two cache lines).
@@ -34,6 +38,7 @@ struct alignas(64) BodyView {
   Vec3 velocity_end_m_s;      // predicted end-of-step velocity (dashpots)
   Vec3 angular_velocity_end;  // predicted end-of-step angular velocity, world
   double inv_mass;            // 1/kg
+  Vec3 position_m;            // centre of mass (contact lever arms)
 };
 
 // One body's share of the contact forces, accumulated by one thread (64 bytes).
@@ -52,7 +57,7 @@ struct alignas(64) WallAccumulator {
   int contacts = 0;
 };
 
-static_assert(sizeof(SphereView) == 64);
+static_assert(sizeof(SphereView) == 32);
 static_assert(sizeof(WallAccumulator) == 64);
 static_assert(sizeof(BodyView) == 128);
 static_assert(sizeof(BodyAccumulator) == 64);
@@ -64,15 +69,13 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double));
 static_assert(sizeof(SphereView) == L::kSphereStride * sizeof(double));
 static_assert(offsetof(SphereView, position_m) == L::kSpherePosition * sizeof(double));
 static_assert(offsetof(SphereView, radius_m) == L::kSphereRadius * sizeof(double));
-static_assert(offsetof(SphereView, body_position_m) == L::kSphereBodyPosition * sizeof(double));
-static_assert(offsetof(SphereView, body) == L::kSphereBodyByte);
-static_assert(offsetof(SphereView, material) == L::kSphereMaterialByte);
 static_assert(sizeof(BodyView) == L::kBodyStride * sizeof(double));
 static_assert(offsetof(BodyView, velocity_m_s) == L::kBodyVelocity * sizeof(double));
 static_assert(offsetof(BodyView, angular_velocity) == L::kBodyOmega * sizeof(double));
 static_assert(offsetof(BodyView, velocity_end_m_s) == L::kBodyVelocityEnd * sizeof(double));
 static_assert(offsetof(BodyView, angular_velocity_end) == L::kBodyOmegaEnd * sizeof(double));
 static_assert(offsetof(BodyView, inv_mass) == L::kBodyInvMass * sizeof(double));
+static_assert(offsetof(BodyView, position_m) == L::kBodyPosition * sizeof(double));
 static_assert(sizeof(BodyAccumulator) == L::kAccStride * sizeof(double));
 static_assert(offsetof(BodyAccumulator, force_n) == L::kAccForce * sizeof(double));
 static_assert(offsetof(BodyAccumulator, torque_n_m) == L::kAccTorque * sizeof(double));

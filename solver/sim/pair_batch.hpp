@@ -16,12 +16,11 @@ namespace seedcal {
 
 // Offsets, in doubles (or bytes where named so), of the fields of the packed views.
 namespace view_layout {
-inline constexpr int kSphereStride = 8;  // SphereView
-inline constexpr int kSpherePosition = 0, kSphereRadius = 3, kSphereBodyPosition = 4;
-inline constexpr int kSphereBodyByte = 56, kSphereMaterialByte = 60;
+inline constexpr int kSphereStride = 4;  // SphereView
+inline constexpr int kSpherePosition = 0, kSphereRadius = 3;
 inline constexpr int kBodyStride = 16;  // BodyView
 inline constexpr int kBodyVelocity = 0, kBodyOmega = 3, kBodyVelocityEnd = 6, kBodyOmegaEnd = 9,
-                     kBodyInvMass = 12;
+                     kBodyInvMass = 12, kBodyPosition = 13;
 inline constexpr int kAccStride = 8;  // BodyAccumulator
 inline constexpr int kAccForce = 0, kAccTorque = 3, kAccRollCapacity = 6;
 }  // namespace view_layout
@@ -34,6 +33,8 @@ struct BatchPairConstants {
 
 struct PairBatchArgs {
   const double* spheres = nullptr;  // SphereView records
+  const std::uint32_t* sphere_body = nullptr;      // each sphere's body
+  const std::uint16_t* sphere_material = nullptr;  // each sphere's material
   const double* bodies = nullptr;   // BodyView records
   double* accumulators = nullptr;   // this thread's BodyAccumulator records
   std::uint8_t* touched = nullptr;  // this thread's marks of the accumulators it wrote

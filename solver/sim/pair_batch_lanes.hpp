@@ -40,12 +40,7 @@ inline constexpr std::size_t kPrefetchAhead = 8;
   for (std::size_t idx = from; idx < to; ++idx) {
     const std::uint32_t k = pairs[idx];
     for (const std::uint32_t s : {a.si[k], a.sj[k]}) {
-      std::uint32_t b;
-      std::memcpy(&b,
-                  reinterpret_cast<const char*>(a.spheres + static_cast<std::size_t>(s) *
-                                                                L::kSphereStride) +
-                      L::kSphereBodyByte,
-                  sizeof b);
+      const std::uint32_t b = a.sphere_body[s];
       const double* q = a.bodies + static_cast<std::size_t>(b) * L::kBodyStride;
       __builtin_prefetch(q, 0, 3);
       __builtin_prefetch(q + 8, 0, 3);
@@ -74,13 +69,12 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
       const std::size_t idx = base + static_cast<std::size_t>(l < used ? l : used - 1);
       k[l] = pairs[idx];
       sc[l] = scale + idx;
-      pi[l] = a.spheres + static_cast<std::size_t>(a.si[k[l]]) * L::kSphereStride;
-      pj[l] = a.spheres + static_cast<std::size_t>(a.sj[k[l]]) * L::kSphereStride;
-      std::uint16_t mi, mj;
-      std::memcpy(&bi[l], reinterpret_cast<const char*>(pi[l]) + L::kSphereBodyByte, sizeof bi[l]);
-      std::memcpy(&bj[l], reinterpret_cast<const char*>(pj[l]) + L::kSphereBodyByte, sizeof bj[l]);
-      std::memcpy(&mi, reinterpret_cast<const char*>(pi[l]) + L::kSphereMaterialByte, sizeof mi);
-      std::memcpy(&mj, reinterpret_cast<const char*>(pj[l]) + L::kSphereMaterialByte, sizeof mj);
+      const std::uint32_t s_i = a.si[k[l]], s_j = a.sj[k[l]];
+      pi[l] = a.spheres + static_cast<std::size_t>(s_i) * L::kSphereStride;
+      pj[l] = a.spheres + static_cast<std::size_t>(s_j) * L::kSphereStride;
+      bi[l] = a.sphere_body[s_i];
+      bj[l] = a.sphere_body[s_j];
+      const std::uint16_t mi = a.sphere_material[s_i], mj = a.sphere_material[s_j];
       qi[l] = a.bodies + static_cast<std::size_t>(bi[l]) * L::kBodyStride;
       qj[l] = a.bodies + static_cast<std::size_t>(bj[l]) * L::kBodyStride;
       hist[l] = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
@@ -89,12 +83,14 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     static_assert(offsetof(BatchPairConstants, e_star_pa) == 0);
     // Four consecutive fields of each lane's record at once (a transpose where lanes are vectors).
     V3<T> xi, xj, ci, cj;
-    T ri, rj, unused;
+    T ri, rj, inv_mi, inv_mj;
     O::load4(pi, L::kSpherePosition, xi.x, xi.y, xi.z, ri);
     O::load4(pj, L::kSpherePosition, xj.x, xj.y, xj.z, rj);
-    O::load4(pi, L::kSphereBodyPosition, ci.x, ci.y, ci.z, unused);
-    O::load4(pj, L::kSphereBodyPosition, cj.x, cj.y, cj.z, unused);
     static_assert(L::kSphereRadius == L::kSpherePosition + 3);
+    // The body's inverse mass and centre of mass, side by side in its record.
+    O::load4(qi, L::kBodyInvMass, inv_mi, ci.x, ci.y, ci.z);
+    O::load4(qj, L::kBodyInvMass, inv_mj, cj.x, cj.y, cj.z);
+    static_assert(L::kBodyPosition == L::kBodyInvMass + 1);
     const V3<T> d = xj - xi;
     const T rs = ri + rj;
     const T dist = O::sqrt(dot(d, d));
@@ -119,7 +115,7 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     O::load4(qj, L::kBodyVelocity + 8, vej.z, wej.x, wej.y, wej.z);
     const V3<T> vrel = (vi + cross(wi, rci)) - (vj + cross(wj, rcj));
     const V3<T> vrel_end = (vei + cross(wei, rci)) - (vej + cross(wej, rcj));
-    const T m_star = 1.0 / (O::gather(qi, L::kBodyInvMass) + O::gather(qj, L::kBodyInvMass));
+    const T m_star = 1.0 / (inv_mi + inv_mj);
     const T r_star = ri * rj / rs;
 
     T e_star, beta, mu_s, mu_r;

@@ -166,24 +166,21 @@ inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const
 }
 
 // The contact kernel's record of a body (sim/contact_view.hpp): half-step velocities and, for the
-// dashpots, v~ = v + h F / m with the given predicted angular velocity w~.
+// dashpots, v~ = v + h F / m with the given predicted angular velocity w~; the centre of mass.
 inline void fill_body_view(BodyView& bv, const Vec3& v, const Vec3& w, const Vec3& w_end,
-                           const Vec3& force, double inv_mass, double h) {
+                           const Vec3& force, double inv_mass, double h, const Vec3& position) {
   bv.velocity_m_s = v;
   bv.angular_velocity = w;
   bv.velocity_end_m_s = v + (h * inv_mass) * force;
   bv.angular_velocity_end = w_end;
   bv.inv_mass = inv_mass;
+  bv.position_m = position;
 }
 
-// The contact kernel's record of a sphere of body b.
-inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius,
-                             const Vec3& body_position, std::size_t b, std::uint16_t material) {
+// The contact kernel's record of a sphere.
+inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius) {
   sv.position_m = centre;
   sv.radius_m = radius;
-  sv.body_position_m = body_position;
-  sv.body = static_cast<std::uint32_t>(b);
-  sv.material = material;
 }
 
 // A lone sphere at its body's centre of mass: kick_drift(), views and skin check as for any body,
@@ -195,17 +192,16 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius,
     Vec3* __restrict vel, Vec3* __restrict mom, Vec3* __restrict omega,
     const Vec3* __restrict force, const Vec3* __restrict torque,
     const double* __restrict inv_mass, const Vec3* __restrict inv_inertia, std::uint32_t i,
-    const double* __restrict radius, const std::uint16_t* __restrict material,
-    Vec3* __restrict centre, BodyView* __restrict bview, SphereView* __restrict sview,
+    const double* __restrict radius, Vec3* __restrict centre, BodyView* __restrict bview, SphereView* __restrict sview,
     const Vec3* __restrict ref, double& max_moved_sq, std::int64_t& bad) {
   const Vec3 L = kick_drift(b, kick, hk, h, dt, pos, vel, mom, force, torque, inv_mass, bad);
   const Vec3 v = vel[b], p = pos[b], T = torque[b];
   const double ii = inv_inertia[b].x();
   const Vec3 w = L * ii;
   omega[b] = w;
-  fill_body_view(bview[b], v, w, Vec3(L + h * T) * ii, force[b], inv_mass[b], h);
+  fill_body_view(bview[b], v, w, Vec3(L + h * T) * ii, force[b], inv_mass[b], h, p);
   centre[i] = p;
-  fill_sphere_view(sview[i], p, radius[i], p, b, material[i]);
+  fill_sphere_view(sview[i], p, radius[i]);
   if (ref) max_moved_sq = std::max(max_moved_sq, (p - ref[i]).squaredNorm());
 }
 
@@ -234,10 +230,9 @@ void Simulation::refresh_views(double h) {
                        Vec3(bodies_.angular_momentum[b] + h * bodies_.torque_n_m[b]),
                        bodies_.isotropic[b] != 0);
     fill_body_view(body_view_[b], bodies_.velocity_m_s[b], bodies_.angular_velocity[b], w_end,
-                   bodies_.force_n[b], bodies_.inv_mass[b], h);
+                   bodies_.force_n[b], bodies_.inv_mass[b], h, bodies_.position_m[b]);
     for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
-      fill_sphere_view(sphere_view_[i], spheres_.position_m[i], spheres_.radius_m[i],
-                       bodies_.position_m[b], b, spheres_.material[i]);
+      fill_sphere_view(sphere_view_[i], spheres_.position_m[i], spheres_.radius_m[i]);
   }
 }
 
@@ -342,7 +337,6 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
   const std::uint32_t* __restrict first = bodies_.first_sphere.data();
   const Vec3* __restrict offset = spheres_.offset_body_m.data();
   const double* __restrict radius = spheres_.radius_m.data();
-  const std::uint16_t* __restrict material = spheres_.material.data();
   Vec3* __restrict centre = spheres_.position_m.data();
   BodyView* __restrict bview = body_view_.data();
   SphereView* __restrict sview = sphere_view_.data();
@@ -363,7 +357,7 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
     for (std::size_t b = b_block; b < block_end; ++b) {
       if (iso_flag[b] == 2) {
         lone_sphere_step(b, kick, hk, h, dt, pos, vel, mom, omega, force, torque, inv_mass,
-                         inv_inertia, first[b], radius, material, centre, bview, sview, ref,
+                         inv_inertia, first[b], radius, centre, bview, sview, ref,
                          max_moved_sq, bad);
         continue;
       }
@@ -377,7 +371,7 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
       omega[b] = w;
       fill_body_view(bview[b], v, w,
                      angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso),
-                     force[b], inv_mass[b], h);
+                     force[b], inv_mass[b], h, p);
       // The rotation matrix only when some sphere is off the centre of mass (not for a lone
       // sphere).
       Mat3 rotation;
@@ -389,7 +383,7 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
         }
         const Vec3 c = rotated ? sphere_centre(p, rotation, offset[i]) : p;
         centre[i] = c;
-        fill_sphere_view(sview[i], c, radius[i], p, b, material[i]);
+        fill_sphere_view(sview[i], c, radius[i]);
         if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
       }
     }

@@ -18,6 +18,7 @@ namespace seedcal {
 namespace {
 
 struct LatticePairs {
+  SphereState state;
   std::vector<SphereView> spheres;
   std::vector<BodyView> bodies;
   std::vector<BodyAccumulator> acc;
@@ -30,7 +31,7 @@ struct LatticePairs {
 LatticePairs make_lattice_pairs(int n_side) {
   constexpr double r = 0.002, pitch = 1.98 * r, jitter = 0.01 * r;
   LatticePairs L;
-  SphereState s;
+  SphereState& s = L.state;
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < n_side; ++k)
@@ -46,9 +47,6 @@ LatticePairs make_lattice_pairs(int n_side) {
         SphereView sv{};
         sv.position_m = p;
         sv.radius_m = r;
-        sv.body_position_m = p;
-        sv.body = b;
-        sv.material = 0;
         L.spheres.push_back(sv);
         BodyView bv{};
         bv.velocity_m_s = 0.01 * Vec3(u(rng), u(rng), u(rng));
@@ -56,6 +54,7 @@ LatticePairs make_lattice_pairs(int n_side) {
         bv.velocity_end_m_s = bv.velocity_m_s;
         bv.angular_velocity_end = bv.angular_velocity;
         bv.inv_mass = 1.0 / (1340.0 * 4.18879 * r * r * r);
+        bv.position_m = p;
         L.bodies.push_back(bv);
       }
   L.list.build(s, 0.4 * r, false, 1);
@@ -84,6 +83,8 @@ void BM_PairBatch(benchmark::State& state) {
                                      pc.rolling_friction, pc.sqrt_tangential_ratio};
   PairBatchArgs args;
   args.spheres = reinterpret_cast<const double*>(L.spheres.data());
+  args.sphere_body = L.state.body.data();
+  args.sphere_material = L.state.material.data();
   args.bodies = reinterpret_cast<const double*>(L.bodies.data());
   args.accumulators = reinterpret_cast<double*>(L.acc.data());
   args.touched = L.touched.data();
