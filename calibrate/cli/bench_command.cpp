@@ -65,6 +65,7 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
                      {"settle_wall_seconds", r.settle_wall_seconds},
                      {"contacts_per_sphere", r.contacts_per_sphere},
                      {"neighbour_builds", r.neighbour_builds},
+                     {"bodies_across_threads", r.bodies_across_threads},
                      {"threads", spec.threads},
                      {"kernel_lanes", r.kernel_lanes},
                      {"profile_s", {{"integrate", r.integrate_s}, {"neighbour", r.neighbour_s},

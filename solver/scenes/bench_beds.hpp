@@ -41,6 +41,9 @@ struct BenchResult {
   double kinetic_energy_j = 0.0;
   std::string failure;           // empty when the run completed
   double integrate_s = 0, neighbour_s = 0, contact_s = 0, reduce_s = 0;  // timed-step profile
+  // At the end: bodies touching a body that another thread moves (the threads' shares of the body
+  // pass, sim/work_split.hpp). Their records cross between the cores' caches every step.
+  std::size_t bodies_across_threads = 0;
 };
 
 BenchSpec settled_bed_spec();

@@ -191,6 +191,7 @@ class Simulation {
   void rebuild_lists();
   // Returns true when the bodies were renumbered (the neighbour lists are then rebuilt).
   bool sort_spatially();
+  std::vector<std::uint32_t> thread_slabs(const Vec3& lo, const Vec3& hi) const;
   void reorder_bodies(const std::vector<std::uint32_t>& old_of_new);
   bool walls_moved_beyond_skin() const;
   void fail(RunStatus s, std::int64_t body, std::string message);

@@ -33,6 +33,34 @@ void permute(std::vector<T>& v, const std::vector<std::uint32_t>& old_of_new) {
 
 }  // namespace
 
+// With T > 1 threads, the bodies cut into T slabs across the longest side of their bounding box,
+// each holding 1/T of the spheres (sim/work_split.hpp gives each thread equal sphere counts in
+// index order, so a slab is a thread's share of the body pass). The curve then orders each slab.
+// A thread's bodies then meet the next thread's over one plane: the bodies with pairs across it
+// are the ones whose records cross between the cores every step (tests/bench/README.md), and a
+// plane across the longest side is the smallest such face for a box-shaped bed. The curve's own
+// halves meet over a staircase of its cells. With one thread: one slab, the curve alone.
+std::vector<std::uint32_t> Simulation::thread_slabs(const Vec3& lo, const Vec3& hi) const {
+  const std::size_t nb = bodies_.size();
+  const std::size_t slabs = static_cast<std::size_t>(std::max(1, options_.threads));
+  std::vector<std::uint32_t> slab(nb, 0);
+  if (slabs == 1) return slab;
+  int axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  std::vector<std::uint32_t> along(nb);
+  std::iota(along.begin(), along.end(), 0u);
+  std::stable_sort(along.begin(), along.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return bodies_.position_m[a][axis] < bodies_.position_m[b][axis];
+  });
+  const std::size_t spheres = spheres_.radius_m.size();
+  std::size_t before = 0;  // spheres of the bodies ahead in `along`
+  for (const std::uint32_t b : along) {
+    slab[b] = static_cast<std::uint32_t>(std::min(slabs - 1, before * slabs / spheres));
+    before += bodies_.first_sphere[b + 1] - bodies_.first_sphere[b];
+  }
+  return slab;
+}
+
 bool Simulation::sort_spatially() {
   const std::size_t nb = bodies_.size();
   Vec3 lo = bodies_.position_m[0], hi = lo;
@@ -49,10 +77,12 @@ bool Simulation::sort_spatially() {
     key[b] = morton3(static_cast<std::uint32_t>(c.x()), static_cast<std::uint32_t>(c.y()),
                      static_cast<std::uint32_t>(c.z()));
   }
+  const std::vector<std::uint32_t> slab = thread_slabs(lo, hi);
   std::vector<std::uint32_t> old_of_new(nb);
   std::iota(old_of_new.begin(), old_of_new.end(), 0u);
-  std::stable_sort(old_of_new.begin(), old_of_new.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  std::stable_sort(old_of_new.begin(), old_of_new.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return slab[a] != slab[b] ? slab[a] < slab[b] : key[a] < key[b];
+  });
   bool identity = true;
   for (std::size_t k = 0; k < nb && identity; ++k) identity = old_of_new[k] == k;
   if (identity) return false;

@@ -29,7 +29,11 @@ std::vector<Vec3> run_bed(int threads, std::uint64_t seed, int steps, int simd_l
   if (steps >= 1000) {
     EXPECT_GT(sim.stats().sphere_contacts, 0u);  // the bed has settled into contact
   }
-  return sim.bodies().position_m;
+  // By body id: the spatial sort orders the bodies by thread count (sim/spatial_sort.cpp).
+  const BodyState& bodies = sim.bodies();
+  std::vector<Vec3> by_id(bodies.size());
+  for (std::size_t b = 0; b < bodies.size(); ++b) by_id[bodies.id[b]] = bodies.position_m[b];
+  return by_id;
 }
 
 TEST(Determinism, SameSeedAndThreadsIsBitIdentical) {
