@@ -1,6 +1,8 @@
 // Re-sorting bodies along a Morton (Z-order) curve of their centres, so that bodies near in space
 // are near in memory: the contact kernel then finds a neighbour's data in cache instead of in main
-// memory (LIGGGHTS's atom_modify sort, DEM-Engine's periodic re-ordering).
+// memory (LIGGGHTS's atom_modify sort, DEM-Engine's periodic re-ordering). With several threads
+// the curve runs within one slab of the bed per thread (thread_slabs()), as a domain decomposition
+// would cut it, so that the threads' bodies meet over one plane.
 #include <algorithm>
 #include <cmath>
 #include <numeric>
