@@ -35,7 +35,8 @@ void permute(std::vector<T>& v, const std::vector<std::uint32_t>& old_of_new) {
 
 }  // namespace
 
-// With T > 1 threads, the bodies cut into T slabs across the longest side of their bounding box,
+// With T > 1 threads, the bodies cut into T slabs across the longest side of their bounding box
+// (of the sides not along gravity),
 // each holding 1/T of the spheres (sim/work_split.hpp gives each thread equal sphere counts in
 // index order, so a slab is a thread's share of the body pass). The curve then orders each slab.
 // A thread's bodies then meet the next thread's over one plane: the bodies with pairs across it
@@ -47,8 +48,18 @@ std::vector<std::uint32_t> Simulation::thread_slabs(const Vec3& lo, const Vec3& 
   const std::size_t slabs = static_cast<std::size_t>(std::max(1, options_.threads));
   std::vector<std::uint32_t> slab(nb, 0);
   if (slabs == 1) return slab;
+  // Across the longest side that is not along gravity: a bed under gravity is dense at the bottom
+  // and dilute above, so a cut across the height would give one thread most of the contacts and
+  // the contact pass's shares (cut where the contact work is equal) would not be the slabs.
+  Vec3 extent = hi - lo;
+  const Vec3& g = options_.gravity_m_s2;
+  if (g.squaredNorm() > 0.0) {
+    int down = 0;
+    g.cwiseAbs().maxCoeff(&down);
+    extent[down] = -1.0;
+  }
   int axis = 0;
-  (hi - lo).maxCoeff(&axis);
+  extent.maxCoeff(&axis);
   std::vector<std::uint32_t> along(nb);
   std::iota(along.begin(), along.end(), 0u);
   std::stable_sort(along.begin(), along.end(), [&](std::uint32_t a, std::uint32_t b) {

@@ -1,6 +1,7 @@
 // The spatial sort (sim/spatial_sort.cpp): with T threads the bodies are cut into T slabs across
-// the longest side of their bounding box, each a thread's share of the body pass, with equal
-// sphere counts (a two-sphere clump counts twice); one thread keeps the Morton curve alone.
+// the longest side of their bounding box that is not along gravity, each a thread's share of the
+// body pass, with equal sphere counts (a two-sphere clump counts twice); one thread keeps the
+// Morton curve alone.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,20 +17,22 @@ namespace {
 
 constexpr double kSpacing = 0.003;  // lattice spacing, m: the 1 mm spheres do not touch
 
-// A 20 x 8 x 4 lattice of lone spheres, added in a shuffled order, without gravity (nothing
-// moves); every `clump_every`-th body is a clump of two spheres along z instead.
-Simulation lattice(int threads, int clump_every) {
+// An nx x ny x nz lattice of lone spheres (20 x 8 x 4 unless given), added in a shuffled order;
+// every `clump_every`-th body is a clump of two spheres along z instead. Without gravity nothing
+// moves; with it, one step moves nothing measurable either (a 1e-7 s step).
+Simulation lattice(int threads, int clump_every, int nx = 20, int ny = 8, int nz = 4,
+                   const Vec3& gravity = Vec3::Zero()) {
   testing::MaterialSpec m;
   SimulationOptions opt;
   opt.dt_s = 1e-7;
-  opt.gravity_m_s2 = Vec3::Zero();
+  opt.gravity_m_s2 = gravity;
   opt.threads = threads;
   opt.sort_interval_steps = 1;
   Simulation sim(testing::make_table(m), opt);
   std::vector<Vec3> at;
-  for (int x = 0; x < 20; ++x)
-    for (int y = 0; y < 8; ++y)
-      for (int z = 0; z < 4; ++z) at.emplace_back(kSpacing * x, kSpacing * y, kSpacing * z);
+  for (int x = 0; x < nx; ++x)
+    for (int y = 0; y < ny; ++y)
+      for (int z = 0; z < nz; ++z) at.emplace_back(kSpacing * x, kSpacing * y, kSpacing * z);
   std::mt19937_64 rng(7);
   std::shuffle(at.begin(), at.end(), rng);
   for (std::size_t k = 0; k < at.size(); ++k) {
@@ -42,9 +45,9 @@ Simulation lattice(int threads, int clump_every) {
   return sim;
 }
 
-// The body pass's shares after one step (which sorts) and the x range of each.
+// The body pass's shares after one step (which sorts) and the x and z ranges of each.
 struct Share {
-  double x_min = 1e9, x_max = -1e9;
+  double x_min = 1e9, x_max = -1e9, z_min = 1e9, z_max = -1e9;
   std::size_t spheres = 0;
 };
 
@@ -58,6 +61,8 @@ std::vector<Share> shares_after_sort(Simulation& sim, int threads) {
     for (std::size_t b = work[t].move_begin; b < work[t].move_end; ++b) {
       out[t].x_min = std::min(out[t].x_min, bodies.position_m[b].x());
       out[t].x_max = std::max(out[t].x_max, bodies.position_m[b].x());
+      out[t].z_min = std::min(out[t].z_min, bodies.position_m[b].z());
+      out[t].z_max = std::max(out[t].z_max, bodies.position_m[b].z());
       out[t].spheres += bodies.first_sphere[b + 1] - bodies.first_sphere[b];
     }
   return out;
@@ -81,6 +86,25 @@ TEST(SpatialSort, SlabsHoldEqualSphereCountsWithClumps) {
   EXPECT_LE(s[0].x_max, s[1].x_min);  // one plane between the threads' bodies
   EXPECT_NEAR(static_cast<double>(s[0].spheres), 400.0, 1.0);
   EXPECT_NEAR(static_cast<double>(s[1].spheres), 400.0, 1.0);
+}
+
+TEST(SpatialSort, ATallColumnIsCutAlongItsHeightUnlessGravityPointsThere) {
+  // 8 x 6 x 20: the longest side is z. Without gravity the two slabs lie one above the other; with
+  // gravity along -z the cut runs down the height (across x, the longer of the level sides), so
+  // each thread gets half of the column's bottom, where a pour's contacts are.
+  {
+    Simulation sim = lattice(2, 0, 8, 6, 20);
+    const std::vector<Share> s = shares_after_sort(sim, 2);
+    EXPECT_LE(s[0].z_max, s[1].z_min);
+    EXPECT_LT(s[0].x_min, s[1].x_max);
+  }
+  {
+    Simulation sim = lattice(2, 0, 8, 6, 20, Vec3(0.0, 0.0, -9.81));
+    const std::vector<Share> s = shares_after_sort(sim, 2);
+    EXPECT_LT(s[0].x_max, s[1].x_min);
+    EXPECT_NEAR(s[0].z_min, s[1].z_min, 1e-9);
+    EXPECT_NEAR(s[0].z_max, s[1].z_max, 1e-9);
+  }
 }
 
 TEST(SpatialSort, OneThreadKeepsTheCurveAlone) {
