@@ -36,13 +36,13 @@ void permute(std::vector<T>& v, const std::vector<std::uint32_t>& old_of_new) {
 }  // namespace
 
 // With T > 1 threads, the bodies cut into T slabs across the longest side of their bounding box
-// (of the sides not along gravity),
-// each holding 1/T of the spheres (sim/work_split.hpp gives each thread equal sphere counts in
-// index order, so a slab is a thread's share of the body pass). The curve then orders each slab.
-// A thread's bodies then meet the next thread's over one plane: the bodies with pairs across it
-// are the ones whose records cross between the cores every step (tests/bench/README.md), and a
-// plane across the longest side is the smallest such face for a box-shaped bed. The curve's own
-// halves meet over a staircase of its cells. With one thread: one slab, the curve alone.
+// that is not along gravity, each holding 1/T of the spheres (sim/work_split.hpp gives each thread
+// equal sphere counts in index order, so a slab is a thread's share of the body pass). The curve
+// then orders each slab. A thread's bodies meet the next thread's over one plane: the bodies with
+// pairs across it are the ones whose records cross between the cores every step
+// (tests/bench/README.md), and a plane across the longest side is the smallest such face for a
+// box-shaped bed. The curve's own halves meet over a staircase of its cells. With one thread: one
+// slab, the curve alone.
 std::vector<std::uint32_t> Simulation::thread_slabs(const Vec3& lo, const Vec3& hi) const {
   const std::size_t nb = bodies_.size();
   const std::size_t slabs = static_cast<std::size_t>(std::max(1, options_.threads));
