@@ -1,10 +1,12 @@
 #include "solver/scenes/bench_beds.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <random>
 
+#include "solver/broadphase/cell_grid.hpp"
 #include "solver/sim/pair_batch.hpp"
 #include "solver/sim/particle_factory.hpp"
 #include "solver/sim/simulation.hpp"
@@ -23,8 +25,9 @@ Wall plane(const Vec3& point, const Vec3& normal) {
 }
 
 // Bodies with a touching sphere pair to a body of another thread's share of the body pass
-// (equal sphere counts in index order, as the solver splits it). All pairs are tested: the count
-// is taken once, after the timed steps.
+// (equal sphere counts in index order, as the solver splits it), counted once after the timed
+// steps. The candidate pairs come from a cell grid (broadphase/cell_grid.hpp) with cells of the
+// largest sphere diameter: every touching pair lies in adjacent cells.
 std::size_t bodies_across_threads(const Simulation& sim, int threads) {
   const BodyState& bodies = sim.bodies();
   const SphereState& spheres = sim.spheres();
@@ -34,15 +37,29 @@ std::size_t bodies_across_threads(const Simulation& sim, int threads) {
   for (std::size_t t = 0; t < shares.size(); ++t)
     for (std::size_t b = shares[t].move_begin; b < shares[t].move_end; ++b)
       owner[b] = static_cast<std::uint32_t>(t);
+  double r_max = 0.0;
+  for (double r : spheres.radius_m) r_max = std::max(r_max, r);
+  CellGrid grid;
+  grid.build(spheres.position_m, 2.0 * r_max);
+  const std::array<int, 3> dims = grid.dims();
   std::vector<char> across(bodies.size(), 0);
-  for (std::size_t i = 0; i < spheres.size(); ++i)
-    for (std::size_t j = i + 1; j < spheres.size(); ++j) {
-      const std::uint32_t bi = spheres.body[i], bj = spheres.body[j];
-      if (owner[bi] == owner[bj]) continue;
-      const double rs = spheres.radius_m[i] + spheres.radius_m[j];
-      if ((spheres.position_m[i] - spheres.position_m[j]).squaredNorm() < rs * rs)
-        across[bi] = across[bj] = 1;
-    }
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const std::array<int, 3> c = grid.cell_of(spheres.position_m[i]);
+    for (int z = std::max(0, c[2] - 1); z <= std::min(dims[2] - 1, c[2] + 1); ++z)
+      for (int y = std::max(0, c[1] - 1); y <= std::min(dims[1] - 1, c[1] + 1); ++y)
+        for (int x = std::max(0, c[0] - 1); x <= std::min(dims[0] - 1, c[0] + 1); ++x) {
+          const int cell = grid.linear(x, y, z);
+          for (std::uint32_t k = grid.start()[cell]; k < grid.start()[cell + 1]; ++k) {
+            const std::uint32_t j = grid.sorted()[k];
+            if (j <= i) continue;
+            const std::uint32_t bi = spheres.body[i], bj = spheres.body[j];
+            if (owner[bi] == owner[bj]) continue;
+            const double rs = spheres.radius_m[i] + spheres.radius_m[j];
+            if ((spheres.position_m[i] - spheres.position_m[j]).squaredNorm() < rs * rs)
+              across[bi] = across[bj] = 1;
+          }
+        }
+  }
   return static_cast<std::size_t>(std::count(across.begin(), across.end(), 1));
 }
 

@@ -14,7 +14,7 @@
 
 namespace seedcal {
 
-// Offsets, in doubles (or bytes where named so), of the fields of the packed views.
+// Offsets, in doubles, of the fields of the packed views.
 namespace view_layout {
 inline constexpr int kSphereStride = 4;  // SphereView
 inline constexpr int kSpherePosition = 0, kSphereRadius = 3;

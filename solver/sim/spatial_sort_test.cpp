@@ -108,8 +108,9 @@ TEST(SpatialSort, ATallColumnIsCutAlongItsHeightUnlessGravityPointsThere) {
 }
 
 TEST(SpatialSort, OneThreadKeepsTheCurveAlone) {
-  // Halves of a one-thread run's order are not slabs: the Morton curve's first half is the
-  // columns x = 0-7 and part of 8-15 (its first cut is x = 16, its second x = 8, then y).
+  // Halves of a one-thread run's order are not slabs: the curve's cells are 2 mm (a sphere's
+  // diameter) and the columns 3 mm apart, so its first cut (cell 16) falls at column 11 of 20,
+  // and its first half reaches past the second half's lowest column.
   Simulation sim = lattice(1, 0);
   const std::vector<Share> s = shares_after_sort(sim, 2);
   EXPECT_GT(s[0].x_max, s[1].x_min);
