@@ -44,6 +44,10 @@ PhysicsConfig read_physics(TomlReader& root) {
     // at rest and shakes a packing under load; contact/rolling_cdt.hpp).
     cfg.physics.contact.cdt_stop_limit = c->choice("cdt_at_rest", {"static", "literal"}, "static") == "static";
     cfg.physics.contact.clip_attractive = c->boolean("clip_attractive", false);
+    // Dashpot velocity: "half_step" (v_{n+1/2}, stable in confined packings) or "predicted" (the
+    // end-of-step estimate, closer restitution for e <= 0.1 in dilute impacts; contact_model.hpp).
+    cfg.physics.contact.dashpot_predicted =
+        c->choice("dashpot_velocity", {"half_step", "predicted"}, "half_step") == "predicted";
     cfg.physics.contact.epsd_damping_ratio =
         c->number("epsd_damping_ratio", Range::closed(0.0, 1.0), 0.3);
     c->check_unknown_keys();

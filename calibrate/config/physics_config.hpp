@@ -2,7 +2,8 @@
 // Reads the parts every scene config shares (schema in docs/config.md):
 //   gravity_m_s2 = [0, 0, -9.81]
 //   dt_s, rayleigh_fraction, force_dt
-//   [contact] model, rolling, clip_attractive, epsd_damping_ratio
+//   [contact] model, rolling, rolling_lever, cdt_at_rest, clip_attractive, dashpot_velocity,
+//             epsd_damping_ratio
 //   [materials.NAME] density_kg_m3, youngs_modulus_pa, poisson_ratio
 //   [[interaction]] name, between = [A, B], restitution, static_friction, rolling_friction
 #include <map>

@@ -19,13 +19,24 @@
 // drift, when the bodies hold the half-step velocity v_{n+1/2}):
 //   - the tangential spring grows by vt_{n+1/2} dt, the velocity the positions were drifted with,
 //     so the spring stays consistent with the motion;
-//   - the dashpots use the predicted end-of-step velocity v~_{n+1} = v_{n+1/2} + dt/2 F_n / m
-//     (Groot & Warren 1997, J. Chem. Phys. 107, 4423, eq. 17 with lambda = 1: an O(dt^2) estimate
-//     of v_{n+1}). With v_{n+1/2} instead the damping force lags half a step; that lag removes
-//     energy early in the contact and lowered the restitution at 10-20 steps per contact from
-//     0.1 to 0.075-0.088 and from 0.01 to 0.002-0.005 (docs/stability.md); with v~_{n+1} the same
-//     runs give 0.092-0.100 and 0.0096-0.0102. The explicit dashpot stays stable for
-//     c dt / m < 2 (Heun's method on dv/dt = -c v / m), far above what the stable time step allows.
+//   - the dashpots use the same half-step velocity by default, as LAMMPS and LIGGGHTS do
+//     (ContactOptions::dashpot_predicted = false). With the half-step velocity a body whose
+//     contacts damp it at the rate g (g = sum c_k / m for its translation, sum c_k r_k^2 / I for
+//     its spin about the lever arms r_k) is kicked to (1 - g dt) of its velocity per step: stable
+//     for g dt < 2.
+//   - optionally, the predicted end-of-step velocity v~_{n+1} = v_{n+1/2} + dt/2 F_n / m (Groot &
+//     Warren 1997, J. Chem. Phys. 107, 4423, eq. 17 with lambda = 1: an O(dt^2) estimate of
+//     v_{n+1}). The half-step velocity lags half a step, which removes energy early in a contact:
+//     at 10-20 steps per contact a binary impact set to e = 0.1 comes out 0.075-0.088 and one set
+//     to 0.01 0.002-0.005, where the prediction gives 0.092-0.100 and 0.0096-0.0102
+//     (docs/stability.md). But F_n holds the previous step's damping force, so the damping feeds
+//     back on itself: with u the half-step velocity and b_n = dt F_n / m the recurrence is
+//     u_{n+1} = u_n + b_n, b_n = -g dt (u_n + b_{n-1} / 2), whose root reaches -1 at g dt = 1,
+//     half the half-step limit (lower still with the springs: docs/stability.md, "Dashpot
+//     velocity"). A seed's spin in a packing at 200 kPa, with six to ten contacts each adding its
+//     tangential damper at the lever r against I = 0.4 m r^2 for a sphere, reaches g dt = 1 at a
+//     fifth of the Rayleigh step; the spins then flip sign every step and grow until the energy
+//     guard stops the run (tests/physics/dashpot_stability_test.cpp).
 //
 // Tangential spring. It is kept in the current tangent plane with its length preserved (the
 // contact frame rotates with the pair; Luding 2008, "Cohesive, frictional powders", sec. 2.2.3).

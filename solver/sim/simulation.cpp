@@ -188,7 +188,7 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius) 
 // the offset: 64 bytes a body and step fewer through a bed larger than the cache (settled bed, one
 // thread: the body pass 0.99 -> 0.76 s per 5,000 steps, the same bits).
 [[gnu::always_inline]] inline void lone_sphere_step(
-    std::size_t b, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
+    std::size_t b, bool kick, double hk, double h, double hp, double dt, Vec3* __restrict pos,
     Vec3* __restrict vel, Vec3* __restrict mom, Vec3* __restrict omega,
     const Vec3* __restrict force, const Vec3* __restrict torque,
     const double* __restrict inv_mass, const Vec3* __restrict inv_inertia, std::uint32_t i,
@@ -199,7 +199,7 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius) 
   const double ii = inv_inertia[b].x();
   const Vec3 w = L * ii;
   omega[b] = w;
-  fill_body_view(bview[b], v, w, Vec3(L + h * T) * ii, force[b], inv_mass[b], h, p);
+  fill_body_view(bview[b], v, w, Vec3(L + hp * T) * ii, force[b], inv_mass[b], hp, p);
   centre[i] = p;
   fill_sphere_view(sview[i], p, radius[i]);
   if (ref) max_moved_sq = std::max(max_moved_sq, (p - ref[i]).squaredNorm());
@@ -319,10 +319,12 @@ void Simulation::finish_kick() {
 void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, bool kick,
                              double hk, const Vec3* ref, double& max_moved_sq,
                              std::int64_t& bad) {
-  // Dashpot velocities: v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and L~_{n+1} = L_{n+1/2} + dt/2 T_n
-  // (Groot & Warren 1997, eq. 17 with lambda = 1; see contact/hertz_mindlin.hpp), with F_n, T_n
+  // Dashpot velocities (contact/hertz_mindlin.hpp): the half-step ones (hp = 0), or with
+  // ContactOptions::dashpot_predicted v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and
+  // L~_{n+1} = L_{n+1/2} + dt/2 T_n (Groot & Warren 1997, eq. 17 with lambda = 1), with F_n, T_n
   // the forces of the previous step still held by the bodies.
   const double h = 0.5 * dt;
+  const double hp = options_.contact.dashpot_predicted ? h : 0.0;
   // Raw pointers: the stores to the views must not make the compiler reload the state.
   Vec3* __restrict pos = bodies_.position_m.data();
   Quat* __restrict rot = bodies_.orientation.data();
@@ -356,7 +358,7 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
                           inv_inertia, bad);
     for (std::size_t b = b_block; b < block_end; ++b) {
       if (iso_flag[b] == 2) {
-        lone_sphere_step(b, kick, hk, h, dt, pos, vel, mom, omega, force, torque, inv_mass,
+        lone_sphere_step(b, kick, hk, h, hp, dt, pos, vel, mom, omega, force, torque, inv_mass,
                          inv_inertia, first[b], radius, centre, bview, sview, ref,
                          max_moved_sq, bad);
         continue;
@@ -370,8 +372,8 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
       const Vec3 w = angular_velocity_from_momentum(q, inv_inertia[b], L, iso);
       omega[b] = w;
       fill_body_view(bview[b], v, w,
-                     angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + h * torque[b]), iso),
-                     force[b], inv_mass[b], h, p);
+                     angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + hp * torque[b]), iso),
+                     force[b], inv_mass[b], hp, p);
       // The rotation matrix only when some sphere is off the centre of mass (not for a lone
       // sphere).
       Mat3 rotation;
@@ -476,7 +478,7 @@ bool Simulation::step() {
   std::int64_t first_bad = -1;
   if (rebuild || walls_moved || sort_due) {
     if (sort_due && sort_spatially()) {
-      refresh_views(0.5 * dt);
+      refresh_views(options_.contact.dashpot_predicted ? 0.5 * dt : 0.0);
       rebuild = false;  // the renumbering rebuilt the lists
     }
     if (rebuild || walls_moved_beyond_skin()) rebuild_lists();

@@ -88,6 +88,7 @@ PhysicsSpec physics(const Corner& c, bool gravity) {
       {"particle_steel", 0, 1, c.restitution, c.static_friction, c.rolling_friction}};
   p.contact.normal = c.normal;
   p.contact.rolling = c.rolling;
+  p.contact.dashpot_predicted = c.dashpot_predicted;
   p.gravity_m_s2 = gravity ? Vec3(0.0, 0.0, -9.81) : Vec3::Zero();
   return p;
 }

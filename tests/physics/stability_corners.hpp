@@ -34,6 +34,7 @@ struct Corner {
   RollingModel rolling = RollingModel::cdt;
   NormalModel normal = NormalModel::hmnr;
   Shape shape = Shape::seed9;
+  bool dashpot_predicted = false;  // ContactOptions::dashpot_predicted
 };
 
 // What became of one run.

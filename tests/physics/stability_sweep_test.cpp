@@ -21,14 +21,29 @@
 namespace seedcal::stability {
 namespace {
 
-// Relative tolerance of the restitution that comes out at n steps per (elastic Hertz) contact:
-// 1.5 / n + 0.5 %. Where the contact starts within a step moves the outcome; over ten entry phases
-// the largest error measured (docs/stability.md, "Restitution") was 14.4 % at 10 steps per contact
-// (e = 0.05), 8.7 % at 15, 4.9 % at 20 and 1.6 % at 50, and below 0.1 % at 1,000: 1.5 / n bounds
-// all of them; 0.5 % covers the rest. Before the dashpots used the predicted end-of-step velocity,
-// e = 0.01 came out 0.0051 at 20 steps and 0.0089 at 100 (-49 % and -11 %): this tolerance fails
-// them.
+// Relative tolerance of the restitution that comes out at n steps per (elastic Hertz) contact with
+// the predicted dashpot velocity (ContactOptions::dashpot_predicted): 1.5 / n + 0.5 %. Where the
+// contact starts within a step moves the outcome; over ten entry phases the largest error measured
+// (docs/stability.md, "Restitution") was 14.4 % at 10 steps per contact (e = 0.05), 8.7 % at 15,
+// 4.9 % at 20 and 1.6 % at 50, and below 0.1 % at 1,000: 1.5 / n bounds all of them; 0.5 % covers
+// the rest.
 double restitution_tolerance(double steps_per_contact) { return 1.5 / steps_per_contact + 0.005; }
+
+// With the half-step dashpot velocity (the default) the damping force lags the force time by
+// dt / 2: c v(t - dt/2) = c v(t) - (c dt / 2) a(t) + O(dt^2), and the part of -(c dt / 2) a that
+// opposes v raises the damping ratio zeta by the factor 1 + zeta w dt. With w dt = pi / n (n steps
+// over the contact's half period) and zeta <= -ln e / pi, ln e grows by at most the factor
+// 1 - ln e / n: the restitution comes out low by up to 1 - exp(-(ln e)^2 / n) (0.88 at e = 0.01
+// and 10 steps, 0.10 at e = 0.3 and 12, 0.02 at e = 0.65 and 12), on top of the tolerance above.
+double half_step_tolerance(double e, double steps_per_contact) {
+  const double l = std::log(e);
+  return 1.0 - std::exp(-l * l / steps_per_contact) + restitution_tolerance(steps_per_contact);
+}
+
+double tolerance(const Corner& c, double e, double steps_per_contact) {
+  return c.dashpot_predicted ? restitution_tolerance(steps_per_contact)
+                             : half_step_tolerance(e, steps_per_contact);
+}
 
 Corner seed(const std::string& name) {
   Corner c;
@@ -106,12 +121,13 @@ TEST(StabilitySweep, ClumpOf2000SpheresReboundsWithTheSetRestitution) {
   ASSERT_EQ(o.verdict, Verdict::ok) << describe(c, o);
   std::printf("2000-sphere clump: e_out %.4f (set %.2f), %.0f steps per contact\n", o.restitution_out,
               c.restitution, o.steps_per_contact);
-  EXPECT_NEAR(o.restitution_out / c.restitution, 1.0, restitution_tolerance(o.steps_per_contact));
+  EXPECT_NEAR(o.restitution_out / c.restitution, 1.0, tolerance(c, c.restitution, o.steps_per_contact));
 }
 
 // --- restitution out = restitution in, 0.01 to 1 ----------------------------------------------
 
 TEST(StabilitySweep, RestitutionMatchesTheSetValueFrom001To1) {
+  for (bool predicted : {false, true})
   for (double E : {1e6, 1.65e8, 1e10})
     for (double fraction : {0.0, 0.02})
       for (double e : {0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.0}) {
@@ -119,13 +135,24 @@ TEST(StabilitySweep, RestitutionMatchesTheSetValueFrom001To1) {
         c.shape = Shape::sphere;
         c.youngs_modulus_pa = E;
         c.restitution = e;
+        c.dashpot_predicted = predicted;
         const Outcome o = impact(c, {fraction, false});
         ASSERT_EQ(o.verdict, Verdict::ok) << describe(c, o);
-        const double tol = restitution_tolerance(o.steps_per_contact);
-        EXPECT_NEAR(o.restitution_out / e, 1.0, tol)
-            << "E " << E << " e " << e << " at " << o.steps_per_contact << " steps per contact";
-        if (e == 0.01 || e == 0.1)
-          std::printf("E %.3g Pa, %s step: e %.2f -> %.5f (%.0f steps per contact, tolerance %.1f %%)\n", E,
+        const double tol = tolerance(c, e, o.steps_per_contact);
+        const auto where = [&] {
+          return "E " + std::to_string(E) + " e " + std::to_string(e) + " at " +
+                 std::to_string(o.steps_per_contact) + " steps per contact, " +
+                 (predicted ? "predicted" : "half-step") + " dashpot velocity";
+        };
+        // The half-step lag only adds damping: never above the set value by more than the
+        // predicted velocity's tolerance; below it by at most `tol`, checked where that bound
+        // says something (under 50 %: at the default step the lag leaves e <= 0.1 unresolved,
+        // docs/stability.md, "Dashpot velocity").
+        if (predicted || tol < 0.5) EXPECT_NEAR(o.restitution_out / e, 1.0, tol) << where();
+        else EXPECT_LE(o.restitution_out / e, 1.0 + restitution_tolerance(o.steps_per_contact)) << where();
+        if (e == 0.01 || e == 0.1 || e == 0.5)
+          std::printf("%s dashpot, E %.3g Pa, %s step: e %.2f -> %.5f (%.0f steps per contact, tolerance %.1f %%)\n",
+                      predicted ? "predicted" : "half-step", E,
                       fraction > 0.0 ? "0.02 Rayleigh" : "default", e, o.restitution_out,
                       o.steps_per_contact, 100.0 * tol);
       }
@@ -136,7 +163,9 @@ TEST(StabilitySweep, FreeDropReboundsWithTheSetRestitution) {
   // restitution_com is rebound over impact speed.
   Corner c = seed("sphere drop");
   c.shape = Shape::sphere;
+  for (bool predicted : {false, true})
   for (double e : {0.01, 0.05, 0.1, 0.3, 0.65, 1.0}) {
+    c.dashpot_predicted = predicted;
     c.restitution = e;
     const Outcome o = free_drop(c, {});
     ASSERT_EQ(o.verdict, Verdict::ok) << describe(c, o);
@@ -153,9 +182,10 @@ TEST(StabilitySweep, FreeDropReboundsWithTheSetRestitution) {
     // e = 0.01 that is 0.0018, a fifth of the rebound.
     const double t_el = n * o.dt_s;
     const double gravity_share = 2.0 * 9.81 * t_el / std::sqrt(2 * 9.81 * 0.15);
-    std::printf("free drop e %.2f -> %.5f (%.0f steps per contact, gravity share %.4f)\n", e,
-                o.restitution_out, n, gravity_share);
-    EXPECT_NEAR(o.restitution_out, e, restitution_tolerance(n) * e + gravity_share) << "e = " << e;
+    std::printf("%s dashpot: free drop e %.2f -> %.5f (%.0f steps per contact, gravity share %.4f)\n",
+                predicted ? "predicted" : "half-step", e, o.restitution_out, n, gravity_share);
+    EXPECT_NEAR(o.restitution_out, e, tolerance(c, e, n) * e + gravity_share)
+        << "e = " << e << (predicted ? ", predicted" : ", half-step") << " dashpot velocity";
   }
 }
 
