@@ -1,5 +1,7 @@
 // `kind = "direct_shear"`: schema in docs/scenes/direct_shear.md.
+#include <algorithm>
 #include <numbers>
+#include <string>
 #include <sstream>
 
 #include "calibrate/io/atomic_file.hpp"
@@ -28,6 +30,16 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
     spec.failure_displacement_m = rig->number("failure_displacement_m", Range::closed(1e-5, 1.0), spec.failure_displacement_m);
     spec.upper_ring_fixed = rig->boolean("upper_ring_fixed", spec.upper_ring_fixed);
     spec.upper_ring_mass_kg = rig->number("upper_ring_mass_kg", Range::closed(0.0, 1e3), spec.upper_ring_mass_kg);
+    spec.geometry = rig->choice("geometry", {"zj", "shells"}, "zj") == "zj" ? ShearBoxGeometry::zj
+                                                                          : ShearBoxGeometry::shells;
+    spec.ring_wall_thickness_m = rig->number("ring_wall_thickness_m", Range::left_open(0.0, 1.0), spec.ring_wall_thickness_m);
+    spec.ring_gap_m = rig->number("ring_gap_m", Range::closed(0.0, 0.5 * spec.sample_height_m), spec.ring_gap_m);
+    // The faces must cover the crescents that open between the bores over the whole shear path.
+    if (spec.geometry == ShearBoxGeometry::zj && spec.ring_wall_thickness_m <= spec.shear_displacement_m)
+      rig->error("ring_wall_thickness_m",
+                 "= " + std::to_string(spec.ring_wall_thickness_m) + " must exceed shear_displacement_m (" +
+                     std::to_string(spec.shear_displacement_m) +
+                     "): the rings' faces cover the gap the upper ring opens only while the ring is wider than its travel");
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();
@@ -44,6 +56,8 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   j["normal_stress_pa"] = spec.normal_stress_pa;
   j["inertial_number"] = r.inertial_number;
   j["dilation_m"] = r.dilation_m;
+  j["curve_shape"] = r.curve_shape;
+  j["geometry"] = to_string(spec.geometry);
   j["upper_ring_lift_m"] = r.upper_ring_lift_m;
   j["consolidated_height_m"] = r.consolidated_height_m;
   j["seeds_across_split"] = r.seeds_across_split;
@@ -59,10 +73,24 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
           << s.normal_stress_pa << "," << s.lid_height_m << "," << s.upper_ring_lift_m << "\n";
     write_file_atomic(ctx.out_dir + "/direct_shear_curve.csv", csv.str());
     SideView view;
-    view.title = "direct shear: peak " + std::to_string(r.shear_strength_pa / 1e3) + " kPa (shear plane in red)";
+    view.title = "direct shear (" + std::string(to_string(spec.geometry)) + " rig) at the end of shear: strength " +
+                 std::to_string(r.shear_strength_pa / 1e3) + " kPa (shear plane in red)";
     add_spheres(view, r.spheres);
     const double R = 0.5 * spec.diameter_m;
     view.lines.push_back({-R, 0.5 * spec.sample_height_m, R + spec.shear_displacement_m, 0.5 * spec.sample_height_m, "#d62728", "shear plane"});
+    // The rings and the cap in section, the upper ring's guide cut off a seed above the cap.
+    const double clip = r.consolidated_height_m + 0.5 * spec.sample_height_m;
+    for (const auto& [x0, z0, x1, z1] : r.rig_outline_m) {
+      const double top = std::min(z1, clip);
+      if (z0 > clip) continue;
+      const std::string steel = "#555555";
+      view.lines.push_back({x0, z0, x1, z0, steel, ""});
+      if (top > z0) {
+        view.lines.push_back({x0, z0, x0, top, steel, ""});
+        view.lines.push_back({x1, z0, x1, top, steel, ""});
+        view.lines.push_back({x0, top, x1, top, steel, ""});
+      }
+    }
     write_file_atomic(ctx.out_dir + "/direct_shear.svg", render_svg(view));
   }
   return j;

@@ -73,17 +73,7 @@ TEST(Hmnr, FlatNineSphereClumpLandingFlatKeepsTheSetRestitution) {
 }
 
 TEST(Hmnr, BenchmarkNineSphereClumpReportsBothModels) {
-  std::ifstream in(testing::source_dir() + "/data/bench/clump9.txt");
-  ASSERT_TRUE(in.good());
-  std::vector<SphereXYZR> c9;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream ls(line);
-    double x, y, z, r;
-    ls >> x >> y >> z >> r;
-    c9.push_back({Vec3(x, y, z), r});
-  }
+  const std::vector<SphereXYZR> c9 = testing::read_xyzr(testing::source_dir() + "/data/bench/clump9.txt");
   ASSERT_EQ(c9.size(), 9u);
   // Dropped along -z, the big central sphere and the sphere below it reach z = -3.95 mm together:
   // two contact points of unequal radius at once.

@@ -1,8 +1,12 @@
 #pragma once
 // Small worlds shared by the physics tests: one material, one interaction, spheres and planes.
+#include <fstream>
 #include <memory>
+#include <sstream>
+#include <string>
 #include <vector>
 
+#include "solver/clump/mass_properties.hpp"
 #include "solver/sim/simulation.hpp"
 
 namespace seedcal::testing {
@@ -64,6 +68,21 @@ inline Simulation body_on_plane(const InteractionTable& table, SimulationOptions
   sim.add_body(body);
   sim.add_wall(plane_wall(Vec3::Zero(), Vec3::UnitZ()));
   return sim;
+}
+
+// The spheres of a clump file of "x y z r" lines in metres (data/bench/clump9.txt: the nine-sphere
+// seed of the peer benchmark); empty when the file cannot be read.
+inline std::vector<SphereXYZR> read_xyzr(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<SphereXYZR> spheres;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    double x, y, z, r;
+    if (ls >> x >> y >> z >> r) spheres.push_back({Vec3(x, y, z), r});
+  }
+  return spheres;
 }
 
 // Effective modulus of two materials: 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2.
