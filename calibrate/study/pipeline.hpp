@@ -29,6 +29,7 @@ struct PipelineState {
   Eigen::VectorXd chosen;           // natural, every parameter
   nlohmann::json solution;          // the solve stage's report
   nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
+  nlohmann::json posterior;         // after confirmation: intervals and identification (posterior_stage.cpp)
   bool converged = false;
   int rounds = 0;
   int calibration_runs = -1;        // DEM runs of stages 1-5 (set when confirmation ends)
@@ -68,6 +69,9 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
 // Confirms at st.chosen; while not converged and the budget allows, adds infill points and
 // re-solves.
 nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// After confirmation: the posterior of the kept parameters over the surrogate box, their 95 %
+// credible intervals and whether each is identified (posterior_stage.cpp; docs/calibrate.md).
+nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store);
 // Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
 // the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
 // All runs form one batch in model order; whenever the first k < models models have every run,

@@ -63,6 +63,16 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
   // target's test (a joint study of two tests runs both at each point).
   j["classical_workflow_evaluations"] = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
   j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
+  // The posterior (posterior_stage.cpp): 95 % credible intervals and identification, with reasons.
+  const bool has_posterior = st.posterior.is_object();
+  j["calibrated_interval"] = has_posterior ? st.posterior.value("calibrated_interval", nlohmann::json::object())
+                                           : nlohmann::json::object();
+  j["identified"] = has_posterior ? st.posterior.value("identified", nlohmann::json::object()) : nlohmann::json::object();
+  if (has_posterior) {
+    nlohmann::json d = st.posterior;
+    d.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
+    j["posterior"] = d;
+  }
   j["tolerance"] = s.confirm.tolerance;
   if (!st.verification.is_null()) j["verification"] = st.verification;
   if (!st.selection.is_null()) j["model_selection"] = st.selection;
@@ -214,6 +224,13 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   progress.log("confirm: " + confirm.value("stop_reason", std::string()) + ", " + std::to_string(ev.runs_used()) +
                " DEM runs");
   st.calibration_runs = ev.runs_used();
+  const auto post = run_posterior(ev, st, store);
+  if (post.contains("identified")) {
+    std::string line;
+    for (const auto& [path, ok] : post["identified"].items())
+      line += (line.empty() ? "" : ", ") + path + (ok.get<bool>() ? " identified" : " not identified");
+    progress.log("posterior: " + line);
+  }
   checkpoint("confirm");
 
   // Verification and model selection run only when the study asks for them (tests or models).

@@ -56,6 +56,9 @@ void read_target(TomlReader& t, StudyConfig& s) {
   tg.value = t.number("value", Range::open(-1e300, 1e300));
   if (t.has("value") && tg.value == 0.0) t.error("value", "= 0: a target must be non-zero (errors are relative)");
   tg.weight = t.number("weight", Range::positive(), 1.0);
+  tg.sd = t.number("sd", Range::non_negative(), 0.0);
+  tg.lab_repeats = static_cast<int>(t.integer("lab_repeats", 1, 100000, 1));
+  if (t.has("lab_repeats") && !t.has("sd")) t.error("lab_repeats", "is given without an sd");
   t.check_unknown_keys();
   s.targets.push_back(std::move(tg));
 }

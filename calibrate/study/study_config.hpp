@@ -18,9 +18,12 @@ struct StudyTarget {
   std::string metric;            // key of the scene's metrics.json (e.g. shear_strength_pa)
   double value = 0.0;            // the measured value the study fits
   double weight = 1.0;           // joint mode: weight of this target's squared relative error
-  // Verification tests ([[verify.test]]) only: the experiment's sd (0: not given), and whether the
-  // experiment gave a value at all (without one the test is reported as simulation only).
+  // The experiment's sd (0: not given) and, for a calibration target, how many tests its value
+  // is the mean of (the posterior counts sd^2 / lab_repeats as the value's variance). Verification
+  // tests also say whether the experiment gave a value at all (without one the test is reported as
+  // simulation only).
   double sd = 0.0;
+  int lab_repeats = 1;
   bool has_value = true;
   int replicates = 0;            // verification tests: runs per model (0: verify.replicates)
 };

@@ -126,6 +126,16 @@ TEST(CalibrateCli, JointTargetsIdentifyTwoUnknowns) {
   EXPECT_NEAR(s["calibrated"]["materials.glass.density_kg_m3"].get<double>() / rho0, 1.0, 0.05) << s.dump(1);
   for (const char* metric : {"contact_duration_s", "max_normal_force_n"})
     EXPECT_LE(std::fabs(s["confirmed"][metric]["rel_error"].get<double>()), 0.005) << metric;
+  // The posterior: both parameters identified, their 95 % intervals holding the truth (a
+  // deterministic scene: the intervals are as narrow as the surrogate's error, which the 5 % above
+  // bounds at the chosen point).
+  for (const auto& [path, truth] : {std::pair{"materials.glass.youngs_modulus_pa", e0},
+                                    std::pair{"materials.glass.density_kg_m3", rho0}}) {
+    EXPECT_TRUE(s["identified"][path].get<bool>()) << s["posterior"].dump(1);
+    const auto iv = s["calibrated_interval"][path];
+    EXPECT_LE(iv[0].get<double>(), truth * 1.05) << path << " " << iv.dump();
+    EXPECT_GE(iv[1].get<double>(), truth * 0.95) << path << " " << iv.dump();
+  }
   // The classical workflow would run both tests at every point of its designs.
   EXPECT_EQ(s["classical_workflow_evaluations"], 2 * (3 * (8 + 5 + 13) + 3)) << s.dump(1);
   std::filesystem::remove_all(dir);
