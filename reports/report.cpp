@@ -18,6 +18,7 @@ Document build_report(const StudyData& study) {
   const auto prov = study.summary.value("provenance", nlohmann::json::object());
   if (prov.contains("study_file")) doc.subtitle.push_back("Study file " + format_value(prov["study_file"]));
   doc.subtitle.push_back("Study directory " + study.dir + "; rendered by seedcal " + version_string());
+  add_answer_section(study, doc);
   add_inputs_section(study, doc);
   add_screening_sections(study, doc);
   add_ascent_section(study, doc);

@@ -7,14 +7,17 @@
 // experiment gives one. A test without an experimental value is reported as simulation only. The
 // first replicate of each test writes its CSV and picture under DIR/scenes/MODEL/TEST/.
 //
-// Selection, following the paper's section 3 (the models are compared at one set of calibrated
-// values, on every test, with their CPU time): per model
-//   error = mean of |e| over the tests with an experimental value,
+// Selection, following the paper's section 3 (the models are compared on every test, with their
+// CPU time): per model
+//   error = mean of |e| over the tests with an experimental value, with its standard error from
+//           the tests' replicate scatter (a test run once takes its sd pooled over the models
+//           that ran it more often),
 //   cost  = CPU seconds of one run of every test (each test's mean over its replicates, summed).
-// The Pareto front holds the models no other model beats on both. The chosen model is the
-// cheapest one whose error is within `verify.error_margin` of the lowest error: accuracy first,
-// and among models that are equally accurate within that margin, the fewest CPU seconds.
-// Also reported, for information: accuracy per CPU second = (1 - error) / cost.
+// The Pareto front holds the models no other model beats on both. The choice (model_choice.hpp):
+// the cheapest model whose error cannot be told apart from the lowest, within
+// `verify.error_margin` plus the scatter; the ties and the replicates it would take to separate
+// the leaders are reported. Also reported, for information: accuracy per CPU second =
+// (1 - error) / cost.
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -23,6 +26,7 @@
 
 #include <gsl/gsl_statistics_double.h>
 
+#include "calibrate/study/model_choice.hpp"
 #include "calibrate/study/pipeline.hpp"
 
 namespace seedcal {
@@ -152,11 +156,44 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
                     {"cpu_seconds", cpu},
                     {"accuracy_per_cpu_second", std::isfinite(err) && cpu > 0 ? nlohmann::json((1.0 - err) / cpu) : nlohmann::json(nullptr)}});
   }
-  // Pareto front and the choice.
+  // Each test's scatter: its sd over the replicates, or for a model that ran it once the sd pooled
+  // over the models that ran it more often.
+  std::vector<double> pooled_sd(static_cast<std::size_t>(scenes), std::numeric_limits<double>::quiet_NaN());
+  for (int t = 0; t < scenes; ++t) {
+    double ss = 0.0;
+    int df = 0;
+    for (int m = 0; m < done; ++m) {
+      const auto& j = rows[static_cast<std::size_t>(m)]["tests"][static_cast<std::size_t>(t)];
+      const int n = j["n"].get<int>();
+      if (n >= 2 && !j["sd"].is_null()) {
+        ss += (n - 1) * std::pow(j["sd"].get<double>(), 2);
+        df += n - 1;
+      }
+    }
+    if (df > 0) pooled_sd[static_cast<std::size_t>(t)] = std::sqrt(ss / df);
+  }
+  std::vector<ModelScore> scores(static_cast<std::size_t>(done));
+  for (int m = 0; m < done; ++m) {
+    double var = 0.0;
+    int with_value = 0;
+    for (int t = 0; t < scenes; ++t) {
+      const auto& j = rows[static_cast<std::size_t>(m)]["tests"][static_cast<std::size_t>(t)];
+      if (j["rel_error"].is_null()) continue;
+      const int n = j["n"].get<int>();
+      const double sd = n >= 2 && !j["sd"].is_null() ? j["sd"].get<double>() : pooled_sd[static_cast<std::size_t>(t)];
+      var += std::pow(sd / std::sqrt(static_cast<double>(n)) / std::fabs(s.scene_of(t).value), 2);
+      ++with_value;
+    }
+    const double se = with_value > 0 ? std::sqrt(var) / with_value : std::numeric_limits<double>::quiet_NaN();
+    scores[static_cast<std::size_t>(m)] = {error[static_cast<std::size_t>(m)], se, cost[static_cast<std::size_t>(m)]};
+    rows[static_cast<std::size_t>(m)]["mean_abs_rel_error_se"] = null_if_nan(se);
+  }
+  const ModelChoice choice = choose_model(scores, s.verify.error_margin);
+  const int chosen = choice.chosen;
   double best = std::numeric_limits<double>::infinity();
   for (const double e : error)
     if (std::isfinite(e)) best = std::min(best, e);
-  int chosen = -1;
+  nlohmann::json ties = nlohmann::json::array();
   for (int m = 0; m < done; ++m) {
     const auto i = static_cast<std::size_t>(m);
     bool dominated = !std::isfinite(error[i]);
@@ -166,19 +203,34 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
       dominated = error[j] <= error[i] && cost[j] <= cost[i] && (error[j] < error[i] || cost[j] < cost[i]);
     }
     rows[i]["pareto"] = !dominated;
-    if (std::isfinite(error[i]) && error[i] <= best + s.verify.error_margin &&
-        (chosen < 0 || cost[i] < cost[static_cast<std::size_t>(chosen)]))
-      chosen = m;
+    rows[i]["tied_with_best"] = static_cast<bool>(choice.tied[i]);
+    if (choice.tied[i]) ties.push_back(s.models[i].name);
   }
-  char rule[320];
+  char rule[400];
   std::snprintf(rule, sizeof rule,
-                "error = mean |relative error| over the tests with an experimental value; cost = CPU seconds of "
-                "one run of every test; chosen: the cheapest model whose error is within %.3g of the lowest (%.4g)",
-                s.verify.error_margin, std::isfinite(best) ? best : 0.0);
+                "error = mean |relative error| over the tests with an experimental value, with its standard error from "
+                "the replicates; cost = CPU seconds of one run of every test; chosen: the cheapest model whose error "
+                "exceeds the lowest (%.4g) by no more than %.3g plus 1.645 standard errors of the difference",
+                std::isfinite(best) ? best : 0.0, s.verify.error_margin);
   nlohmann::json selection = {{"rule", rule}, {"error_margin", s.verify.error_margin}, {"models", rows},
                               {"chosen", chosen >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(chosen)].name)
                                                      : nlohmann::json(nullptr)},
+                              {"most_accurate", choice.best >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(choice.best)].name)
+                                                                 : nlohmann::json(nullptr)},
+                              {"tied", ties}, {"comparison", choice.comparison},
                               {"models_verified", done}, {"models_planned", models}, {"partial", done < models}};
+  if (chosen >= 0 && chosen != choice.best) {
+    // The replicates per test it would take to tell the chosen model from the most accurate one.
+    if (choice.replicates_factor > 0.0) {
+      nlohmann::json reps = nlohmann::json::object();
+      for (int t = 0; t < scenes; ++t)
+        reps[s.scene_of(t).name] = static_cast<int>(std::ceil(reps_of(t) * choice.replicates_factor));
+      selection["replicates_to_separate"] = reps;
+    } else {
+      selection["replicates_to_separate"] = nullptr;
+      selection["replicates_note"] = "their errors differ by less than the margin: no number of replicates separates them";
+    }
+  }
   if (done < models) {
     std::string waiting;
     for (int m = done; m < models; ++m) waiting += (m > done ? ", " : "") + s.models[static_cast<std::size_t>(m)].name;
@@ -190,6 +242,9 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
   }
   nlohmann::json at = nlohmann::json::object();
   for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
+  selection["verified_at"] = at;
+  selection["verified_at_note"] = "every model is verified at the values calibrated with the first model (\"" +
+                                  s.models.front().name + "\"); a model that needs other values shows it as a larger error";
   const int shown = chosen >= 0 ? chosen : 0;
   st.verification = {{"model", s.models[static_cast<std::size_t>(shown)].name}, {"replicates", s.verify.replicates}, {"point", at},
                      {"tests", rows[static_cast<std::size_t>(shown)]["tests"]}};

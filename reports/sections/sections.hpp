@@ -6,6 +6,7 @@
 
 namespace seedcal::reports {
 
+void add_answer_section(const StudyData& d, Document& doc);        // the answer: values, intervals, lab, model
 void add_inputs_section(const StudyData& d, Document& doc);        // study file, parameters, targets
 void add_screening_sections(const StudyData& d, Document& doc);    // PB design; effects + Pareto chart
 void add_ascent_section(const StudyData& d, Document& doc);        // steepest ascent path and the box

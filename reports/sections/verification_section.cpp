@@ -119,6 +119,22 @@ void add_selection(const nlohmann::json& m, Document& doc) {
     pts.push_back({as_number(x.value("cpu_seconds", nlohmann::json())), 100.0 * std::fabs(as_number(x.value("mean_abs_rel_error", nlohmann::json()))),
                    x.value("pareto", false), model});
   }
+  if (m.contains("comparison")) t.notes.push_back("Choice: " + format_value(m["comparison"]) + ".");
+  if (m.contains("tied") && m["tied"].is_array()) {
+    std::string ties;
+    for (const auto& x : m["tied"]) ties += (ties.empty() ? "" : ", ") + format_value(x);
+    t.notes.push_back("Errors that cannot be told apart from the lowest within the margin and the scatter: " + ties + ".");
+  }
+  if (m.contains("replicates_to_separate")) {
+    if (m["replicates_to_separate"].is_object()) {
+      std::string reps;
+      for (const auto& [test, n] : m["replicates_to_separate"].items()) reps += (reps.empty() ? "" : ", ") + test + " " + format_value(n);
+      t.notes.push_back("Replicates per test it would take to tell the chosen model from the most accurate one: " + reps + ".");
+    } else if (m.contains("replicates_note")) {
+      t.notes.push_back(format_value(m["replicates_note"]) + ".");
+    }
+  }
+  if (m.contains("verified_at_note")) t.notes.push_back(format_value(m["verified_at_note"]) + ".");
   s.table(std::move(t));
   if (!by_model.rows.empty()) s.table(std::move(by_model));
   std::string all, front, pick;

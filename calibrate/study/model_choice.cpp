@@ -1,0 +1,57 @@
+#include "calibrate/study/model_choice.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace seedcal {
+
+ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, double z) {
+  ModelChoice out;
+  const int n = static_cast<int>(models.size());
+  out.tied.assign(static_cast<std::size_t>(n), false);
+  for (int m = 0; m < n; ++m) {
+    const double e = models[static_cast<std::size_t>(m)].error;
+    if (std::isfinite(e) && (out.best < 0 || e < models[static_cast<std::size_t>(out.best)].error)) out.best = m;
+  }
+  if (out.best < 0) {
+    out.comparison = "no model has an error on every test with an experimental value";
+    return out;
+  }
+  const ModelScore& b = models[static_cast<std::size_t>(out.best)];
+  for (int m = 0; m < n; ++m) {
+    const ModelScore& x = models[static_cast<std::size_t>(m)];
+    if (!std::isfinite(x.error)) continue;
+    const double excess = x.error - b.error;
+    const double se = std::sqrt(x.error_se * x.error_se + b.error_se * b.error_se);
+    const double allowance = margin + (std::isfinite(se) ? z * se : 0.0);
+    out.tied[static_cast<std::size_t>(m)] = m == out.best || excess <= allowance;
+    if (out.tied[static_cast<std::size_t>(m)] &&
+        (out.chosen < 0 || x.cost < models[static_cast<std::size_t>(out.chosen)].cost))
+      out.chosen = m;
+  }
+  const ModelScore& c = models[static_cast<std::size_t>(out.chosen)];
+  char text[400];
+  if (out.chosen == out.best) {
+    out.replicates_factor = 1.0;
+    std::snprintf(text, sizeof text,
+                  "the most accurate model is also the cheapest of those within the margin (%.3g) plus the scatter of the lowest error (%.4g)",
+                  margin, b.error);
+  } else {
+    const double excess = c.error - b.error;
+    const double se = std::sqrt(c.error_se * c.error_se + b.error_se * b.error_se);
+    if (excess <= margin || !std::isfinite(se) || se == 0.0) {
+      out.replicates_factor = -1.0;
+    } else {
+      const double r = z * se / (excess - margin);
+      out.replicates_factor = r * r;
+    }
+    std::snprintf(text, sizeof text,
+                  "error %.4g against the lowest %.4g: %.3g more, within the margin %.3g plus %.3g x its standard error %.3g, so the two "
+                  "cannot be told apart and the cheaper is chosen",
+                  c.error, b.error, excess, margin, z, std::isfinite(se) ? se : 0.0);
+  }
+  out.comparison = text;
+  return out;
+}
+
+}  // namespace seedcal

@@ -1,0 +1,70 @@
+// The report's first screen: the answer. The calibrated values with their 95 % credible intervals
+// and whether each is identified (with the reason), the confirmation against the target, the
+// verification tests against the laboratory, and the chosen clump model with the comparison that
+// chose it. The inputs and the stage-by-stage detail follow in the later sections.
+#include <cmath>
+
+#include "reports/sections/common.hpp"
+#include "reports/sections/sections.hpp"
+
+namespace seedcal::reports {
+
+void add_answer_section(const StudyData& d, Document& doc) {
+  const auto& j = d.summary;
+  if (j.empty()) return;
+  Section s{"answer", "The answer", {}};
+  const auto& calibrated = member(j, "calibrated");
+  const auto& interval = member(j, "calibrated_interval");
+  const auto& identified = member(j, "identified");
+  const auto& posterior = member(j, "posterior");
+  Table cal{"answer_parameters", "Calibrated values, their 95 % credible intervals and whether the data identify them",
+            {"parameter", "calibrated", "95 % interval", "identified", "why"}, {}, {}};
+  for (const auto& [p, v] : calibrated.items()) {
+    std::string iv = "n/a";
+    if (interval.contains(p) && interval[p].is_array() && interval[p].size() == 2)
+      iv = format_value(interval[p][0]) + " .. " + format_value(interval[p][1]);
+    std::string why = member(posterior, "reasons").contains(p) ? format_value(member(posterior, "reasons")[p]) : "";
+    if (member(posterior, "at_edge").contains(p)) why += "; the calibrated value lies " + format_value(member(posterior, "at_edge")[p]);
+    cal.add_row({p, format_value(v), iv, identified.contains(p) ? format_value(identified[p]) : "n/a", why});
+  }
+  if (!cal.rows.empty()) {
+    for (const auto& t : member(posterior, "targets"))
+      cal.notes.push_back("Target " + format_value(t.value("name", nlohmann::json())) + ": " +
+                          format_value(t.value("uncertainty", nlohmann::json())) + "; run-to-run sd " +
+                          format_value(t.value("run_noise_sd", nlohmann::json())) + " from " +
+                          format_value(t.value("run_noise_source", nlohmann::json())) + ".");
+    s.table(std::move(cal));
+  } else {
+    s.note("No calibrated values yet (the study stopped at stage " + j.value("stage_reached", std::string("?")) + ").");
+  }
+
+  Table lab{"answer_tests", "Against the laboratory", {"test", "role", "simulated mean", "sd", "laboratory", "relative error"}, {}, {}};
+  for (const auto& [metric, m] : member(j, "confirmed").items())
+    lab.add_row({metric, "target (confirmation)", format_value(m.value("mean", nlohmann::json())), format_value(m.value("sd", nlohmann::json())),
+                 format_value(m.value("target", nlohmann::json())), format_percent(m.value("rel_error", nlohmann::json()))});
+  for (const auto& t : member(member(j, "verification"), "tests")) {
+    if (t.value("role", std::string()) == "target") continue;
+    std::string lab_value = format_value(t.value("experimental_mean", nlohmann::json()));
+    if (!t.value("experimental_sd", nlohmann::json()).is_null()) lab_value += " (sd " + format_value(t["experimental_sd"]) + ")";
+    lab.add_row({format_value(t.value("test", nlohmann::json())), "verification", format_value(t.value("mean", nlohmann::json())),
+                 format_value(t.value("sd", nlohmann::json())), lab_value, format_percent(t.value("rel_error", nlohmann::json()))});
+  }
+  if (!lab.rows.empty()) s.table(std::move(lab));
+
+  const auto& sel = member(j, "model_selection");
+  if (!sel.empty() && !sel.value("chosen", nlohmann::json()).is_null()) {
+    std::string text = "Chosen clump model: " + format_value(sel["chosen"]);
+    if (!sel.value("most_accurate", nlohmann::json()).is_null() && sel["most_accurate"] != sel["chosen"])
+      text += " (the most accurate is " + format_value(sel["most_accurate"]) + ")";
+    text += ". " + format_value(sel.value("comparison", nlohmann::json("")));
+    if (sel.contains("tied") && sel["tied"].size() > 1) {
+      std::string ties;
+      for (const auto& m : sel["tied"]) ties += (ties.empty() ? "" : ", ") + format_value(m);
+      text += ". Tied within the scatter: " + ties;
+    }
+    s.paragraph(text + ".");
+  }
+  doc.sections.push_back(std::move(s));
+}
+
+}  // namespace seedcal::reports
