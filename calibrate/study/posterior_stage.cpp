@@ -115,21 +115,33 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     const double lo = mid(q) + half(q) * p.interval_lo(q), hi = mid(q) + half(q) * p.interval_hi(q);
     interval[par.path] = {lo, hi};
     const double range = par.high - par.low, width = hi - lo;
-    const bool ok = width <= kIdentifiedFraction * range;
+    // An interval that runs into an edge of the box where the parameter could go on (the edge is
+    // not its min or max) is cut by the box, not by the data: the study has no runs beyond it.
+    const double tiny = 1e-9 * (std::abs(par.max) + std::abs(par.min) + 1.0);
+    const bool cut_lo = p.interval_lo(q) <= -kEdgeCoded && st.box_lo(q) > par.min + tiny;
+    const bool cut_hi = p.interval_hi(q) >= kEdgeCoded && st.box_hi(q) < par.max - tiny;
+    const bool ok = width <= kIdentifiedFraction * range && !cut_lo && !cut_hi;
     identified[par.path] = ok;
     std::string why = "95 % interval " + fixed(lo) + " .. " + fixed(hi) + ", " + fixed(100.0 * width / range, 2) +
                       " % of the screening range " + fixed(par.low) + " .. " + fixed(par.high) + " (identified: at most " +
-                      fixed(100.0 * kIdentifiedFraction, 2) + " %)";
-    if (!ok) why += ": the targets do not pin it down within their scatter";
-    if (p.interval_lo(q) <= -kEdgeCoded || p.interval_hi(q) >= kEdgeCoded)
-      why += "; the interval reaches the surrogate box's edge, beyond which the study has no runs, so it may be wider";
+                      fixed(100.0 * kIdentifiedFraction, 2) + " %, not cut by the surrogate box)";
+    if (width > kIdentifiedFraction * range) why += ": the targets do not pin it down within their scatter";
+    if (cut_lo || cut_hi)
+      why += std::string(width > kIdentifiedFraction * range ? "; " : ": ") +
+             "the interval runs into the surrogate box's edge, beyond which the study has no runs, so the data may allow values beyond it";
     reasons[par.path] = why;
-    // The chosen value at the edge of its box or at its limit.
+    // At the edge of its range: the chosen value at its limit or at the edge of the surrogate box,
+    // or the credible interval running into a limit (the data favour values at or beyond it).
+    const bool at_min = p.interval_lo(q) <= -kEdgeCoded && !cut_lo, at_max = p.interval_hi(q) >= kEdgeCoded && !cut_hi;
     if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
       const double v = st.chosen(j), u = (v - mid(q)) / half(q);
       const double span = par.max - par.min;
       if (span > 0.0 && (v - par.min <= 0.01 * span || par.max - v <= 0.01 * span))
         at_edge[par.path] = "at its limit (min " + fixed(par.min) + ", max " + fixed(par.max) + ")";
+      else if (at_min || at_max)
+        at_edge[par.path] = "next to its limit: the 95 % interval runs into its " +
+                            std::string(at_max ? "max " + fixed(par.max) : "min " + fixed(par.min)) +
+                            ", so the data favour values at or beyond the limit";
       else if (std::abs(u) >= kEdgeCoded)
         at_edge[par.path] = "at the edge of the surrogate box (" + fixed(st.box_lo(q)) + " .. " + fixed(st.box_hi(q)) + ")";
     }

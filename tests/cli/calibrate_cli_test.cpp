@@ -111,6 +111,20 @@ TEST(CalibrateCli, RecoversYoungsModulusFromContactTime) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(CalibrateCli, AValueAtItsLimitIsFlagged) {
+  // The contact time of E = 6e10 Pa, the parameter's max (its screening high): the calibrated value
+  // lies at or next to its limit, and the posterior says so.
+  const std::string dir = scratch_dir("calibrate-edge");
+  const auto m = impact_metrics(6.0e10, 2800.0, dir + "/truth");  // the scene's density
+  const auto r = calibrate_study(dir, study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  const std::string path = "materials.glass.youngs_modulus_pa";
+  ASSERT_TRUE(s["posterior"]["at_edge"].contains(path)) << s["posterior"].dump(1);
+  EXPECT_NE(s["posterior"]["at_edge"][path].get<std::string>().find("limit"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CalibrateCli, JointTargetsIdentifyTwoUnknowns) {
   const std::string dir = scratch_dir("calibrate-joint");
   const double e0 = 4.1e10, rho0 = 2350.0;
