@@ -30,12 +30,13 @@ ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, d
       out.chosen = m;
   }
   const ModelScore& c = models[static_cast<std::size_t>(out.chosen)];
-  char text[400];
+  char text[480];
   if (out.chosen == out.best) {
     out.replicates_factor = 1.0;
     std::snprintf(text, sizeof text,
-                  "the most accurate model is also the cheapest of those within the margin (%.3g) plus the scatter of the lowest error (%.4g)",
-                  margin, b.error);
+                  "the most accurate model (mean |relative error| %.2f %%) is also the cheapest of those within %.2f "
+                  "points of it plus the scatter",
+                  100.0 * b.error, 100.0 * margin);
   } else {
     const double excess = c.error - b.error;
     const double se = std::sqrt(c.error_se * c.error_se + b.error_se * b.error_se);
@@ -45,10 +46,14 @@ ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, d
       const double r = z * se / (excess - margin);
       out.replicates_factor = r * r;
     }
+    char scatter[96];
+    if (std::isfinite(se)) std::snprintf(scatter, sizeof scatter, "%.2f points", 100.0 * z * se);
+    else std::snprintf(scatter, sizeof scatter, "an unknown scatter (single runs)");
     std::snprintf(text, sizeof text,
-                  "error %.4g against the lowest %.4g: %.3g more, within the margin %.3g plus %.3g x its standard error %.3g, so the two "
-                  "cannot be told apart and the cheaper is chosen",
-                  c.error, b.error, excess, margin, z, std::isfinite(se) ? se : 0.0);
+                  "mean |relative error| %.2f %% against the lowest %.2f %%: %.2f points more, within the margin of %.2f "
+                  "points plus %s (%.3g standard errors of the difference), so the two cannot be told apart and the "
+                  "cheaper is chosen",
+                  100.0 * c.error, 100.0 * b.error, 100.0 * excess, 100.0 * margin, scatter, z);
   }
   out.comparison = text;
   return out;

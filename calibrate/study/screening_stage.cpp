@@ -183,6 +183,7 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
       st.run_noise_var_floor[t] = df * var / gsl_cdf_chisq_Qinv(0.05, df);
       tj["run_noise_sd"] = std::sqrt(var);
       tj["run_noise_sd_lower95"] = std::sqrt(st.run_noise_var_floor[t]);
+      tj["run_noise_df"] = a.df_error;
     }
     if (static_cast<int>(t) == primary) {
       st.screen_mean = mean;

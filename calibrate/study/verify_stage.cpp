@@ -23,6 +23,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <set>
 
 #include <gsl/gsl_statistics_double.h>
 
@@ -172,19 +173,27 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
     }
     if (df > 0) pooled_sd[static_cast<std::size_t>(t)] = std::sqrt(ss / df);
   }
+  // A test that every model ran once has no scatter to count: its share of the error's standard
+  // error is left out (the comparison then understates the scatter), and the selection says so.
   std::vector<ModelScore> scores(static_cast<std::size_t>(done));
+  std::set<std::string> no_scatter;
   for (int m = 0; m < done; ++m) {
     double var = 0.0;
-    int with_value = 0;
+    int with_value = 0, with_scatter = 0;
     for (int t = 0; t < scenes; ++t) {
       const auto& j = rows[static_cast<std::size_t>(m)]["tests"][static_cast<std::size_t>(t)];
       if (j["rel_error"].is_null()) continue;
+      ++with_value;
       const int n = j["n"].get<int>();
       const double sd = n >= 2 && !j["sd"].is_null() ? j["sd"].get<double>() : pooled_sd[static_cast<std::size_t>(t)];
+      if (!std::isfinite(sd)) {
+        no_scatter.insert(s.scene_of(t).name);
+        continue;
+      }
       var += std::pow(sd / std::sqrt(static_cast<double>(n)) / std::fabs(s.scene_of(t).value), 2);
-      ++with_value;
+      ++with_scatter;
     }
-    const double se = with_value > 0 ? std::sqrt(var) / with_value : std::numeric_limits<double>::quiet_NaN();
+    const double se = with_scatter > 0 ? std::sqrt(var) / with_value : std::numeric_limits<double>::quiet_NaN();
     scores[static_cast<std::size_t>(m)] = {error[static_cast<std::size_t>(m)], se, cost[static_cast<std::size_t>(m)]};
     rows[static_cast<std::size_t>(m)]["mean_abs_rel_error_se"] = null_if_nan(se);
   }
@@ -219,6 +228,11 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
                                                                  : nlohmann::json(nullptr)},
                               {"tied", ties}, {"comparison", choice.comparison},
                               {"models_verified", done}, {"models_planned", models}, {"partial", done < models}};
+  if (!no_scatter.empty()) {
+    std::string names;
+    for (const auto& n : no_scatter) names += (names.empty() ? "" : ", ") + n;
+    selection["scatter_note"] = "run once by every model, so their scatter is not counted in the comparison: " + names;
+  }
   if (chosen >= 0 && chosen != choice.best) {
     // The replicates per test it would take to tell the chosen model from the most accurate one.
     if (choice.replicates_factor > 0.0) {

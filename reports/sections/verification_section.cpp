@@ -134,6 +134,7 @@ void add_selection(const nlohmann::json& m, Document& doc) {
       t.notes.push_back(format_value(m["replicates_note"]) + ".");
     }
   }
+  if (m.contains("scatter_note")) t.notes.push_back("Tests " + format_value(m["scatter_note"]) + ".");
   if (m.contains("verified_at_note")) t.notes.push_back(format_value(m["verified_at_note"]) + ".");
   s.table(std::move(t));
   if (!by_model.rows.empty()) s.table(std::move(by_model));
