@@ -18,11 +18,16 @@ ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, d
     return out;
   }
   const ModelScore& b = models[static_cast<std::size_t>(out.best)];
+  // Model m's excess error over the best and the standard error of that difference.
+  const auto excess_of = [&](int m) { return models[static_cast<std::size_t>(m)].error - b.error; };
+  const auto se_of = [&](int m) {
+    const double s = models[static_cast<std::size_t>(m)].error_se;
+    return std::sqrt(s * s + b.error_se * b.error_se);
+  };
   for (int m = 0; m < n; ++m) {
     const ModelScore& x = models[static_cast<std::size_t>(m)];
     if (!std::isfinite(x.error)) continue;
-    const double excess = x.error - b.error;
-    const double se = std::sqrt(x.error_se * x.error_se + b.error_se * b.error_se);
+    const double excess = excess_of(m), se = se_of(m);
     const double allowance = margin + (std::isfinite(se) ? z * se : 0.0);
     out.tied[static_cast<std::size_t>(m)] = m == out.best || excess <= allowance;
     if (out.tied[static_cast<std::size_t>(m)] &&
@@ -38,8 +43,7 @@ ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, d
                   "points of it plus the scatter",
                   100.0 * b.error, 100.0 * margin);
   } else {
-    const double excess = c.error - b.error;
-    const double se = std::sqrt(c.error_se * c.error_se + b.error_se * b.error_se);
+    const double excess = excess_of(out.chosen), se = se_of(out.chosen);
     if (excess <= margin || !std::isfinite(se) || se == 0.0) {
       out.replicates_factor = -1.0;
     } else {

@@ -1,12 +1,13 @@
 // After confirmation: the posterior of the kept parameters over the surrogate box
 // (doe/surrogate/posterior.hpp), with a uniform prior, every target's Gaussian process refitted
-// with its run-to-run noise fixed at the variance of the replicates (design centre points and
-// confirmation replicates: the pure-error mean square), and each target's laboratory uncertainty
+// with its run-to-run noise fixed (the replicates' pure-error mean square pooled with the
+// screening's estimate), and each target's laboratory uncertainty
 // (`sd` over `lab_repeats`). Per kept parameter: the 95 % credible interval and whether it is
 // identified (the interval at most a third of the parameter's screening range), with the reason;
 // the chosen value is flagged when it lies at the edge of the surrogate box or at its limit.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "calibrate/study/pipeline.hpp"
@@ -33,7 +34,7 @@ std::string fixed(double v, int digits = 3) {
 nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store) {
   const StudyConfig& s = ev.study();
   const int k = static_cast<int>(st.kept.size());
-  const Eigen::VectorXd mid = 0.5 * (st.box_lo + st.box_hi), half = 0.5 * (st.box_hi - st.box_lo);
+  const Eigen::VectorXd half = 0.5 * (st.box_hi - st.box_lo);
   nlohmann::json report = {{"prior", "uniform over the surrogate box"}, {"level", 0.95}, {"targets", nlohmann::json::array()}};
   std::vector<doe::TargetEvidence> evidence;
   std::vector<std::shared_ptr<doe::GaussianProcess>> gps;
@@ -123,13 +124,20 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     report["targets"][t]["response_range_over_box"] = {lo, hi};
   }
 
+  // In natural units (box_point: the surrogate box's coded -1 .. 1 to the parameters' values).
+  const Eigen::VectorXd lo_n = box_point(st, p.interval_lo), hi_n = box_point(st, p.interval_hi);
+  const Eigen::VectorXd mode_n = box_point(st, p.mode), median_n = box_point(st, p.median);
   nlohmann::json interval = nlohmann::json::object(), identified = nlohmann::json::object(),
-                 reasons = nlohmann::json::object(), at_edge = nlohmann::json::object();
+                 reasons = nlohmann::json::object(), at_edge = nlohmann::json::object(),
+                 mode = nlohmann::json::object(), median = nlohmann::json::object(), factors = nlohmann::json::array();
   for (int q = 0; q < k; ++q) {
     const int j = st.kept[static_cast<std::size_t>(q)];
     const StudyParameter& par = s.parameters[static_cast<std::size_t>(j)];
-    const double lo = mid(q) + half(q) * p.interval_lo(q), hi = mid(q) + half(q) * p.interval_hi(q);
+    const double lo = lo_n(q), hi = hi_n(q);
     interval[par.path] = {lo, hi};
+    mode[par.path] = mode_n(q);
+    median[par.path] = median_n(q);
+    factors.push_back(par.path);
     const double range = par.high - par.low, width = hi - lo;
     // An interval that runs into an edge of the box where the parameter could go on (the edge is
     // not its min or max) is cut by the box, not by the data: the study has no runs beyond it.
@@ -150,7 +158,7 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     // or the credible interval running into a limit (the data favour values at or beyond it).
     const bool at_min = p.interval_lo(q) <= -kEdgeCoded && !cut_lo, at_max = p.interval_hi(q) >= kEdgeCoded && !cut_hi;
     if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
-      const double v = st.chosen(j), u = (v - mid(q)) / half(q);
+      const double v = st.chosen(j), u = (v - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q);
       const double span = par.max - par.min;
       if (span > 0.0 && (v - par.min <= 0.01 * span || par.max - v <= 0.01 * span))
         at_edge[par.path] = "at its limit (min " + fixed(par.min) + ", max " + fixed(par.max) + ")";
@@ -166,12 +174,6 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
   report["identified"] = identified;
   report["reasons"] = reasons;
   report["at_edge"] = at_edge;
-  nlohmann::json mode = nlohmann::json::object(), median = nlohmann::json::object();
-  for (int q = 0; q < k; ++q) {
-    const std::string& path = s.parameters[static_cast<std::size_t>(st.kept[static_cast<std::size_t>(q)])].path;
-    mode[path] = mid(q) + half(q) * p.mode(q);
-    median[path] = mid(q) + half(q) * p.median(q);
-  }
   report["mode"] = mode;
   report["median"] = median;
   // The credible region for pictures (two leading factors): the density on a 41 x 41 grid over the
@@ -180,10 +182,12 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     doe::PosteriorOptions coarse = po;
     coarse.grid_points = 41;
     const doe::Posterior c = doe::posterior(evidence, coarse);
-    nlohmann::json grid = {{"x", nlohmann::json::array()}, {"y", nlohmann::json::array()}, {"weight", nlohmann::json::array()}};
+    nlohmann::json grid = {{"factors", factors}, {"x", nlohmann::json::array()}, {"y", nlohmann::json::array()},
+                           {"weight", nlohmann::json::array()}};
     for (Eigen::Index i = 0; i < c.points.rows(); ++i) {
-      grid["x"].push_back(mid(0) + half(0) * c.points(i, 0));
-      grid["y"].push_back(mid(1) + half(1) * c.points(i, 1));
+      const Eigen::VectorXd x = box_point(st, c.points.row(i).transpose());
+      grid["x"].push_back(x(0));
+      grid["y"].push_back(x(1));
       grid["weight"].push_back(c.weights(i));
     }
     grid["hpd95_threshold"] = c.hpd_threshold;

@@ -199,9 +199,7 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
   }
   const ModelChoice choice = choose_model(scores, s.verify.error_margin);
   const int chosen = choice.chosen;
-  double best = std::numeric_limits<double>::infinity();
-  for (const double e : error)
-    if (std::isfinite(e)) best = std::min(best, e);
+  const double best = choice.best >= 0 ? error[static_cast<std::size_t>(choice.best)] : 0.0;
   nlohmann::json ties = nlohmann::json::array();
   for (int m = 0; m < done; ++m) {
     const auto i = static_cast<std::size_t>(m);
@@ -220,7 +218,7 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
                 "error = mean |relative error| over the tests with an experimental value, with its standard error from "
                 "the replicates; cost = CPU seconds of one run of every test; chosen: the cheapest model whose error "
                 "exceeds the lowest (%.4g) by no more than %.3g plus 1.645 standard errors of the difference",
-                std::isfinite(best) ? best : 0.0, s.verify.error_margin);
+                best, s.verify.error_margin);
   nlohmann::json selection = {{"rule", rule}, {"error_margin", s.verify.error_margin}, {"models", rows},
                               {"chosen", chosen >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(chosen)].name)
                                                      : nlohmann::json(nullptr)},

@@ -19,16 +19,11 @@ void add_posterior_plot_section(const StudyData& d, Document& doc) {
   const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(w.size()))));
   if (n < 3 || static_cast<std::size_t>(n) * static_cast<std::size_t>(n) != w.size()) return;
   const auto& interval = member(*post, "calibrated_interval");
-  std::vector<std::string> names;
-  for (const auto& [p, v] : interval.items()) names.push_back(p);
+  // The grid's two factors in its own order (the kept factors'); an older store has none.
+  const auto names = strings_of(g.value("factors", nlohmann::json::array()));
   if (names.size() != 2) return;
-  // The grid runs over the kept factors in the study's order; the interval object is sorted by
-  // name, so read the factor order from the last solve round.
   const int last = d.last_solve_round();
-  if (last > 0) {
-    const auto f = strings_of(d.stage("solve_round_" + std::to_string(last))->value("factors", nlohmann::json::array()));
-    if (f.size() == 2) names = f;
-  }
+  const nlohmann::json* round = last > 0 ? d.stage("solve_round_" + std::to_string(last)) : nullptr;
   // Rows of the grid: the first factor varies fastest (doe::posterior's grid).
   std::string text;
   for (int j = 0; j < n; ++j) {
@@ -44,8 +39,8 @@ void add_posterior_plot_section(const StudyData& d, Document& doc) {
   p.data.emplace_back("density.dat", text);
   p.data.emplace_back("hpd.dat", "");
   std::vector<std::vector<double>> curve, chosen;
-  if (last > 0) {
-    const auto& sol = d.stage("solve_round_" + std::to_string(last))->value("solution", nlohmann::json::object());
+  if (round) {
+    const auto& sol = round->value("solution", nlohmann::json::object());
     for (const auto& c : sol.value("curve", nlohmann::json::array()))
       curve.push_back({as_number(c.value(names[0], nlohmann::json())), as_number(c.value(names[1], nlohmann::json()))});
   }
