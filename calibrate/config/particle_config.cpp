@@ -7,8 +7,8 @@
 
 namespace seedcal {
 
-ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys,
-                             const std::string& config_path) {
+ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys, const std::string& config_path,
+                             bool many_seeds) {
   ParticleConfig out;
   auto p = root.table("particle");
   if (!p) {
@@ -16,6 +16,8 @@ ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys,
     return out;
   }
   const std::uint16_t mat = phys.material(*p, "material", p->string("material"));
+  out.material = mat;
+  if (many_seeds) phys.require_interaction(*p, "material", mat, mat, "the seeds touch each other");
   const double density =
       mat < phys.physics.materials.size() ? phys.physics.materials[mat].density_kg_m3 : 1000.0;
   std::vector<SphereXYZR> spheres;

@@ -16,11 +16,14 @@ namespace seedcal {
 
 struct ParticleConfig {
   BodyDef body;              // principal frame, mass properties set, material set
+  std::uint16_t material = PhysicsConfig::kUnknown;  // the seeds' material
   std::string description;   // e.g. the clump file name, for reports
   ScaleDistribution scale;   // truncated normal, mean 1 (the template's size)
 };
 
-ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys,
-                             const std::string& config_path);
+// many_seeds: the scene holds more than one seed, so the seed material's pair with itself needs an
+// [[interaction]] (recorded as an error on [particle] material when it has none).
+ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys, const std::string& config_path,
+                             bool many_seeds);
 
 }  // namespace seedcal

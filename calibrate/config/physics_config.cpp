@@ -16,7 +16,20 @@ std::uint16_t PhysicsConfig::material(TomlReader& reader, const std::string& key
   const std::string hint = did_you_mean(name, names);
   if (!hint.empty()) msg += "; did you mean \"" + hint + "\"?";
   reader.error(key, msg);
-  return 0;
+  return kUnknown;
+}
+
+void PhysicsConfig::require_interaction(TomlReader& reader, const std::string& key, std::uint16_t a,
+                                        std::uint16_t b, const std::string& how) const {
+  const auto& mats = physics.materials;
+  if (a >= mats.size() || b >= mats.size()) return;
+  for (const Interaction& x : physics.interactions)
+    if ((x.material_a == a && x.material_b == b) || (x.material_a == b && x.material_b == a)) return;
+  const std::string pair = "\"" + mats[a].name + "\", \"" + mats[b].name + "\"";
+  reader.error(key, "= \"" + mats[b].name + "\": " + how + ", but no [[interaction]] is between [" + pair +
+                        "]; they would pass through each other with zero force. Add [[interaction]] with "
+                        "between = [" + pair + "], restitution and static_friction (rolling_friction "
+                        "optional)");
 }
 
 PhysicsConfig read_physics(TomlReader& root) {

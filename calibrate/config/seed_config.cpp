@@ -7,10 +7,11 @@ SeedSceneConfig read_seed_scene(TomlReader& root, const std::string& config_path
   root.string("kind");
   c.fidelity = root.choice("fidelity", {"paper", "quick"}, "paper");
   c.phys = read_physics(root);
-  const ParticleConfig particle = read_particle(root, c.phys, config_path);
+  const ParticleConfig particle = read_particle(root, c.phys, config_path, true);
   c.seeds.body = particle.body;
   c.seeds.scale = particle.scale;
   c.particle_description = particle.description;
+  c.seed_material = particle.material;
   return c;
 }
 

@@ -18,6 +18,13 @@ struct SeedSceneConfig {
   SeedSpec seeds;
   std::string fidelity;
   std::string particle_description;
+  std::uint16_t seed_material = PhysicsConfig::kUnknown;
+
+  // Records an error on `rig` (key `key`) when the seeds and `wall_material` have no interaction.
+  void require_wall_interaction(TomlReader& rig, const std::string& key, std::uint16_t wall_material,
+                                const std::string& how) const {
+    phys.require_interaction(rig, key, seed_material, wall_material, how);
+  }
 };
 
 SeedSceneConfig read_seed_scene(TomlReader& root, const std::string& config_path);

@@ -12,6 +12,7 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
   if (auto rig = rig_table(root, "bulk_density", cfg.fidelity)) {
     spec.container_m = rig->vec3("container_m", Range::closed(0.005, 10.0), true).value_or(spec.container_m);
     spec.wall_material = cfg.phys.material(*rig, "wall_material", rig->string("wall_material"));
+    cfg.require_wall_interaction(*rig, "wall_material", spec.wall_material, "the seeds touch the container");
     spec.collar_fraction = rig->number("collar_fraction", Range::closed(0.0, 5.0), 0.6);
     spec.overfill = rig->number("overfill", Range::closed(0.5, 3.0), 1.0);
     spec.settle_energy_ratio = rig->number("settle_energy_ratio", Range::open(0.0, 1.0), 1e-4);

@@ -16,6 +16,8 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   fill_seed_spec(spec, cfg, ctx);
   if (auto rig = rig_table(root, "direct_shear", cfg.fidelity)) {
     spec.box_material = cfg.phys.material(*rig, "box_material", rig->string("box_material"));
+    cfg.require_wall_interaction(*rig, "box_material", spec.box_material,
+                                 "the seeds touch the rings, the base and the lid");
     spec.diameter_m = rig->number("diameter_m", Range::closed(0.005, 2.0), spec.diameter_m);
     spec.sample_height_m = rig->number("sample_height_m", Range::closed(0.002, 2.0), spec.sample_height_m);
     spec.normal_stress_pa = rig->number("normal_stress_pa", Range::closed(1.0, 1e8), spec.normal_stress_pa);

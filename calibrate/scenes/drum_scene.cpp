@@ -15,6 +15,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   if (auto rig = rig_table(root, "drum", cfg.fidelity)) {
     drum_material = rig->string("drum_material");
     spec.drum_material = cfg.phys.material(*rig, "drum_material", drum_material);
+    cfg.require_wall_interaction(*rig, "drum_material", spec.drum_material, "the seeds touch the drum");
     spec.diameter_m = rig->number("diameter_m", Range::closed(0.01, 10.0), spec.diameter_m);
     spec.depth_m = rig->number("depth_m", Range::closed(0.005, 10.0), spec.depth_m);
     spec.filling_rate = rig->number("filling_rate", Range::open(0.0, 0.9), spec.filling_rate);

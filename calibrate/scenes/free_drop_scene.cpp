@@ -16,11 +16,13 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   spec.threads = 1;
   spec.seed = ctx.seed;
   spec.observer = ctx.observer;
-  const ParticleConfig particle = read_particle(root, phys, ctx.config_path);
+  const ParticleConfig particle = read_particle(root, phys, ctx.config_path, false);
   spec.body = particle.body;
   if (auto fd = root.table("free_drop")) {
     spec.drop_height_m = fd->number("drop_height_m", Range::left_open(0.0, 100.0), 0.150);
     spec.plate_material = phys.material(*fd, "plate_material", fd->string("plate_material"));
+    phys.require_interaction(*fd, "plate_material", particle.material, spec.plate_material,
+                             "the seed lands on the plate");
     spec.random_orientation = fd->boolean("random_orientation", true);
     spec.max_time_s = fd->number("max_time_s", Range::left_open(0.0, 1e3), 2.0);
     fd->check_unknown_keys();

@@ -1,4 +1,5 @@
 // `kind = "impact"`: schema in docs/scenes/impact.md.
+#include <algorithm>
 #include <cmath>
 
 #include "calibrate/config/physics_config.hpp"
@@ -28,9 +29,20 @@ nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx) {
   const Range speed = Range::closed(-1e4, 1e4);
   auto bodies = root.table_array("body");
   if (bodies.empty()) root.error("body", "is required: at least one [[body]]");
+  std::vector<std::uint16_t> body_materials;  // per [[body]], kUnknown where unknown
   for (TomlReader& b : bodies) {
     const std::string mat_name = b.string("material");
     const std::uint16_t mat = phys.material(b, "material", mat_name);
+    body_materials.push_back(mat);
+    // Any two bodies can touch: each new pair of materials needs an interaction.
+    for (std::size_t i = 0; i + 1 < body_materials.size(); ++i) {
+      if (std::find(body_materials.begin(), body_materials.begin() + static_cast<std::ptrdiff_t>(i),
+                    body_materials[i]) != body_materials.begin() + static_cast<std::ptrdiff_t>(i))
+        continue;  // this material was checked against the new one already
+      phys.require_interaction(b, "material", body_materials[i], mat,
+                               "[[body]] " + std::to_string(body_materials.size()) + " can touch [[body]] " +
+                                   std::to_string(i + 1));
+    }
     const Vec3 pos = b.vec3("position_m", coord, true).value_or(Vec3::Zero());
     const Vec3 vel = b.vec3("velocity_m_s", speed, false).value_or(Vec3::Zero());
     const Vec3 spin = b.vec3("angular_velocity_rad_s", Range::closed(-1e6, 1e6), false).value_or(Vec3::Zero());
@@ -86,6 +98,13 @@ nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx) {
     if (n.norm() < 1e-12) w.error("normal", "must not be the zero vector");
     else ws.normal = n.normalized();
     ws.material = phys.material(w, "material", w.string("material"));
+    std::vector<std::uint16_t> checked;
+    for (std::size_t i = 0; i < body_materials.size(); ++i) {
+      if (std::find(checked.begin(), checked.end(), body_materials[i]) != checked.end()) continue;
+      checked.push_back(body_materials[i]);
+      phys.require_interaction(w, "material", body_materials[i], ws.material,
+                               "[[body]] " + std::to_string(i + 1) + " can touch this wall");
+    }
     w.check_unknown_keys();
     spec.walls.push_back(ws);
   }

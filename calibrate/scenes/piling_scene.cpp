@@ -15,6 +15,8 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   if (auto rig = rig_table(root, "piling", cfg.fidelity)) {
     spec.plate_material = cfg.phys.material(*rig, "plate_material", rig->string("plate_material"));
     spec.tube_material = cfg.phys.material(*rig, "tube_material", rig->string("tube_material"));
+    cfg.require_wall_interaction(*rig, "plate_material", spec.plate_material, "the seeds pile on the plate");
+    cfg.require_wall_interaction(*rig, "tube_material", spec.tube_material, "the seeds fill the tube");
     spec.tube_diameter_m = rig->number("tube_diameter_m", Range::closed(0.005, 5.0), spec.tube_diameter_m);
     spec.fill_height_m = rig->number("fill_height_m", Range::closed(0.005, 5.0), spec.fill_height_m);
     spec.lift_speed_m_s = rig->number("lift_speed_m_s", Range::closed(1e-5, 10.0), spec.lift_speed_m_s);

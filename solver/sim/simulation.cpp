@@ -55,6 +55,7 @@ Simulation::Simulation(InteractionTable table, SimulationOptions options)
 std::uint32_t Simulation::add_body(const BodyDef& def) {
   if (def.spheres.empty()) throw std::invalid_argument("add_body: a body needs at least one sphere");
   if (!(def.mass_kg > 0.0)) throw std::invalid_argument("add_body: mass must be > 0");
+  require_interactions(def.material, false, "add_body");
   settle();
   const auto b = static_cast<std::uint32_t>(bodies_.size());
   bodies_.position_m.push_back(def.position_m);
@@ -84,6 +85,8 @@ std::uint32_t Simulation::add_body(const BodyDef& def) {
     spheres_.position_m.push_back(def.position_m + bodies_.orientation.back() * sd.offset_m);
   }
   bodies_.first_sphere.push_back(static_cast<std::uint32_t>(spheres_.size()));
+  if (body_materials_.size() <= def.material) body_materials_.resize(def.material + 1u, 0);
+  body_materials_[def.material] = 1;
   ready_ = false;
   reference_energy_j_ = -1.0;
   return b;
@@ -91,9 +94,31 @@ std::uint32_t Simulation::add_body(const BodyDef& def) {
 
 std::size_t Simulation::add_wall(Wall wall) {
   if (!wall.shape) throw std::invalid_argument("add_wall: wall '" + wall.name + "' has no shape");
+  require_interactions(wall.material, true, "add_wall: wall '" + wall.name + "'");
+  if (wall_materials_.size() <= wall.material) wall_materials_.resize(wall.material + 1u, 0);
+  wall_materials_[wall.material] = 1;
   walls_.push_back(std::move(wall));
   ready_ = false;
   return walls_.size() - 1;
+}
+
+void Simulation::require_interactions(std::uint16_t material, bool wall, const std::string& what) const {
+  const std::size_t n = table_.material_count();
+  if (material >= n)
+    throw std::invalid_argument(what + ": material index " + std::to_string(material) + " is not in the table (" +
+                                std::to_string(n) + " materials)");
+  const auto& mats = table_.materials();
+  auto check = [&](const std::vector<char>& present, const char* other) {
+    for (std::size_t m = 0; m < present.size(); ++m) {
+      if (!present[m] || table_.pair(material, static_cast<std::uint16_t>(m)).defined) continue;
+      throw std::invalid_argument(what + ": materials '" + mats[material].name + "' and '" + mats[m].name +
+                                  "' have no interaction, and a " + other +
+                                  " of the second can touch it: they would pass through each other "
+                                  "with zero force");
+    }
+  };
+  check(body_materials_, "body");
+  if (!wall) check(wall_materials_, "wall");
 }
 
 void Simulation::set_time_step(double dt_s) {

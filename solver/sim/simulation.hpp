@@ -83,6 +83,9 @@ class Simulation {
 
   // Building the world. Bodies get consecutive ids in the order they are added. Their storage
   // index may change when the world is re-sorted in space: find a body with index_of(id).
+  // Both throw std::invalid_argument when the new body's or wall's material has no interaction
+  // with a material it can touch (any body's, or a wall's for a body): such a pair would pass
+  // through each other with zero force.
   std::uint32_t add_body(const BodyDef& def);
   std::size_t add_wall(Wall wall);
   void set_log(std::function<void(const std::string&)> sink) { log_ = std::move(sink); }
@@ -197,12 +200,17 @@ class Simulation {
   bool walls_moved_beyond_skin() const;
   void fail(RunStatus s, std::int64_t body, std::string message);
   std::string step_size_note() const;
+  // Throws std::invalid_argument naming the two materials when `material` (a new body's, or a new
+  // wall's when `wall`) has no interaction with a material it can touch.
+  void require_interactions(std::uint16_t material, bool wall, const std::string& what) const;
 
   InteractionTable table_;
   SimulationOptions options_;
   BodyState bodies_;
   SphereState spheres_;
   std::vector<Wall> walls_;
+  // Materials present among the bodies and among the walls (indexed by material).
+  std::vector<char> body_materials_, wall_materials_;
   VerletList pairs_;
   WallContactList wall_pairs_;
   StepStats stats_;

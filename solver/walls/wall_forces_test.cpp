@@ -34,6 +34,48 @@ TEST(WallForces, SphereRestingOnAPlateLoadsItWithItsWeight) {
   EXPECT_EQ(sim.walls()[0].contacts, 1);
 }
 
+// A pair of materials with no interaction would pass through each other with zero force: the
+// simulation refuses the body or wall that brings such a pair into the world, whichever comes last.
+TEST(WallForces, MaterialPairWithoutAnInteractionIsRefused) {
+  const std::vector<Material> mats = {{"glass", 2800.0, 4.8e10, 0.2}, {"steel", 7800.0, 2e11, 0.3}};
+  const InteractionTable only_glass(mats, {{"gg", 0, 0, 0.9, 0.3, 0.0}});
+  SimulationOptions opt;
+  opt.dt_s = 1e-7;
+  const BodyDef glass = sphere_body(0.005, 2800.0, 0);
+  BodyDef steel = sphere_body(0.005, 7800.0, 1);
+  steel.position_m = Vec3(0, 0, 0.02);
+  auto steel_plane = [] {
+    Wall w = testing::plane_wall(Vec3::Zero(), Vec3::UnitZ());
+    w.material = 1;
+    return w;
+  };
+  {
+    Simulation sim(only_glass, opt);
+    sim.add_body(glass);
+    EXPECT_THROW(sim.add_wall(steel_plane()), std::invalid_argument);
+  }
+  {
+    Simulation sim(only_glass, opt);
+    sim.add_wall(steel_plane());
+    try {
+      sim.add_body(glass);
+      ADD_FAILURE() << "a glass body over a steel wall without a glass-steel interaction was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("'glass' and 'steel' have no interaction"), std::string::npos) << e.what();
+    }
+  }
+  {
+    Simulation sim(only_glass, opt);
+    sim.add_body(glass);
+    EXPECT_THROW(sim.add_body(steel), std::invalid_argument);  // steel-glass and steel-steel missing
+  }
+  {
+    Simulation sim(InteractionTable(mats, {{"gg", 0, 0, 0.9, 0.3, 0.0}, {"gs", 0, 1, 0.9, 0.3, 0.0}}), opt);
+    sim.add_wall(steel_plane());
+    EXPECT_NO_THROW(sim.add_body(glass));  // every pair that can touch is defined (steel-steel is not needed)
+  }
+}
+
 TEST(WallForces, SphereOnAMeshedFloorOverASharedVertexCountsOnce) {
   // A 40 mm square floor of 8 triangles (four squares, each split in two) meeting at the centre,
   // where six triangles share the vertex: the sphere rests on that vertex.
