@@ -22,6 +22,8 @@ struct RunArgs {
 
 void run_scene_command(const RunArgs& a, const GlobalOptions& g) {
   const SceneFile scene = load_scene_file(a.scene, a.sets);
+  // The config's warnings before the run (they are in metrics.json too).
+  for (const std::string& w : check_scene(scene)) std::cerr << "seedcal: warning: " << w << "\n";
   // More jobs than repeats would idle.
   const int jobs = std::min(a.jobs, scene.repeats);
   const int threads = g.threads_per_job(jobs);

@@ -1,8 +1,11 @@
 #include "calibrate/clumps/clump_source.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "solver/clump/buried_spheres.hpp"
 
 namespace seedcal {
 
@@ -43,7 +46,33 @@ std::vector<SphereXYZR> read_text_clump(const std::string& path, TomlReader& rea
   return out;
 }
 
+std::string sphere_text(const std::vector<SphereXYZR>& s, std::size_t i) {
+  std::ostringstream t;
+  t.precision(4);
+  const Vec3& c = s[i].centre_m;
+  t << "sphere " << i + 1 << " (r = " << s[i].radius_m << " m at " << c.x() << ", " << c.y() << ", " << c.z()
+    << " m)";
+  return t.str();
+}
+
 }  // namespace
+
+void warn_buried_spheres(const std::vector<SphereXYZR>& s, const std::string& source, TomlReader& reader,
+                         const std::string& key) {
+  const std::vector<BuriedSphere> buried = buried_spheres(s, 0.01);
+  if (buried.empty()) return;
+  std::ostringstream m;
+  m << source << buried.size() << " of " << s.size()
+    << " spheres lie inside another sphere of the clump (reaching less than 1 % of their radius out "
+       "of it): ";
+  const std::size_t shown = std::min<std::size_t>(buried.size(), 4);
+  for (std::size_t k = 0; k < shown; ++k)
+    m << (k ? "; " : "") << sphere_text(s, buried[k].sphere) << " in " << sphere_text(s, buried[k].inside);
+  if (shown < buried.size()) m << "; and " << buried.size() - shown << " more";
+  m << ". They add no surface, yet the time step follows the smallest sphere: remove them, or rebuild "
+       "the clump (seedcal clump build, docs/clumps.md)";
+  reader.warn(key, m.str());
+}
 
 std::vector<SphereXYZR> load_clump_spheres(const std::string& path, TomlReader& reader,
                                            const std::string& key) {
@@ -74,6 +103,7 @@ std::vector<SphereXYZR> load_clump_spheres(const std::string& path, TomlReader& 
     out = read_text_clump(path, reader, key);
   }
   if (out.empty()) reader.error(key, "= \"" + path + "\": the clump file holds no spheres");
+  warn_buried_spheres(out, "= \"" + path + "\": ", reader, key);
   return out;
 }
 

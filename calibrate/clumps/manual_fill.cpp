@@ -8,7 +8,10 @@
 // (exact along each line, so it is a continuous function of every parameter) over one quadrant
 // y, z >= 0, which is enough because shape and clump are both mirror-symmetric in y and z; NLopt's
 // Subplex (Rowan 1990, a derivative-free method robust on non-smooth objectives) maximises it
-// from a fixed start, so the result is deterministic.
+// from a fixed start, so the result is deterministic. Every sphere must reach the surface: the
+// objective is penalised for each sphere that reaches less than min_protrusion of its radius out
+// of the union of the others (a buried sphere adds no surface but sets the time step), and no
+// radius is below min_radius_fraction of the smallest semi-axis.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -16,6 +19,7 @@
 #include <nlopt.hpp>
 
 #include "calibrate/clumps/fill.hpp"
+#include "solver/clump/buried_spheres.hpp"
 
 namespace seedcal {
 namespace {
@@ -96,6 +100,24 @@ struct QuadrantIoU {
   }
 };
 
+// 128 directions resolve a sphere's reach to about a tenth of its radius's cap angle; the finished
+// fill is checked with a finer set (clumps_test.cpp). A weight of 10 makes a shortfall of a hundredth
+// of a radius cost a tenth of IoU.
+constexpr int kReachDirections = 128;
+constexpr double kBurialWeight = 10.0;
+
+// Every sphere must reach out of the union of the others by at least `margin` of its radius: a
+// sphere the others cover adds no surface but can set the time step
+// (solver/clump/buried_spheres.hpp). The penalty is the sum of the shortfalls, in radii: a wholly
+// covered sphere costs `margin` or more, against IoU gains of a few thousandths at the end of the
+// search, so no optimum keeps one; it is continuous in every parameter, as Subplex needs.
+double burial_penalty(const std::vector<SphereXYZR>& s, double margin, const std::vector<Vec3>& directions) {
+  double pen = 0.0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    pen += std::max(0.0, margin - union_reach_fraction(s, i, directions));
+  return pen;
+}
+
 }  // namespace
 
 ManualFillResult manual_fill(const Shape& shape, const ManualFillOptions& o) {
@@ -104,6 +126,8 @@ ManualFillResult manual_fill(const Shape& shape, const ManualFillOptions& o) {
                                 std::to_string(o.spheres) + ")");
   if (o.max_evaluations < 100 || o.grid < 8)
     throw std::invalid_argument("manual fill: max_evaluations >= 100 and grid >= 8 are needed");
+  if (!(o.min_radius_fraction > 0.0 && o.min_radius_fraction <= 1.0) || !(o.min_protrusion >= 0.0 && o.min_protrusion < 1.0))
+    throw std::invalid_argument("manual fill: min_radius_fraction must be in (0, 1] and min_protrusion in [0, 1)");
   const Aabb b = shape.bounds();
   const Vec3 semi = 0.5 * (b.hi - b.lo);
   const double a = b.hi.x();  // +x end (the hilum side)
@@ -112,9 +136,9 @@ ManualFillResult manual_fill(const Shape& shape, const ManualFillOptions& o) {
   const Layout l = layout_for(o.spheres);
   const int np = l.params();
   std::vector<double> x(static_cast<std::size_t>(np)), lo(x.size()), hi(x.size());
-  const double r_lo = 0.02 * small, r_hi = big;
+  const double r_lo = o.min_radius_fraction * small, r_hi = big;
   auto set = [&](int k, double v, double l0, double h0) {
-    x[static_cast<std::size_t>(k)] = v;
+    x[static_cast<std::size_t>(k)] = std::clamp(v, l0, h0);
     lo[static_cast<std::size_t>(k)] = l0;
     hi[static_cast<std::size_t>(k)] = h0;
   };
@@ -139,10 +163,12 @@ ManualFillResult manual_fill(const Shape& shape, const ManualFillOptions& o) {
   pairs(l.z_pairs, az);
 
   const QuadrantIoU iou(shape, 0.25 * big, o.grid);
+  const std::vector<Vec3> directions = fibonacci_directions(kReachDirections);
   int evals = 0;
   auto objective = [&](const std::vector<double>& p) {
     ++evals;
-    return iou(spheres_from(l, p.data()));
+    const std::vector<SphereXYZR> s = spheres_from(l, p.data());
+    return iou(s) - kBurialWeight * burial_penalty(s, o.min_protrusion, directions);
   };
   using Obj = decltype(objective);
   nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(np));
@@ -174,7 +200,7 @@ ManualFillResult manual_fill(const Shape& shape, const ManualFillOptions& o) {
   }
   ManualFillResult res;
   res.spheres = spheres_from(l, x.data());
-  res.iou_objective = best;
+  res.iou_objective = iou(res.spheres);
   res.evaluations = evals;
   res.layout = "length axis: 3 (centre, hilum, tail); y pairs: " + std::to_string(l.y_pairs) +
                "; z pairs: " + std::to_string(l.z_pairs);

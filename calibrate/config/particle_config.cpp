@@ -38,6 +38,7 @@ ParticleConfig read_particle(TomlReader& root, const PhysicsConfig& phys, const 
       }
       spheres.push_back({Vec3(row[0], row[1], row[2]), row[3]});
     }
+    warn_buried_spheres(spheres, "", *p, "spheres_m");
   }
   // Size distribution (Table 5 of the paper: width sd / mean width); truncated at +-2 sd by default.
   out.scale.sd = p->number("scale_sd", Range::closed(0.0, 0.5), 0.0);

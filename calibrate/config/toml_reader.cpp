@@ -27,8 +27,10 @@ std::string Range::describe() const {
   return s.str();
 }
 
-void ConfigDiagnostics::add(const toml::value* where, const std::string& key,
-                            const std::string& message) {
+namespace {
+
+std::string located(const std::string& file, const toml::value* where, const std::string& key,
+                    const std::string& message) {
   std::ostringstream s;
   s << file;
   if (where) {
@@ -36,7 +38,19 @@ void ConfigDiagnostics::add(const toml::value* where, const std::string& key,
     if (loc.line() > 0) s << ":" << loc.line();
   }
   s << ": " << key << " " << message;
-  problems.push_back(s.str());
+  return s.str();
+}
+
+}  // namespace
+
+void ConfigDiagnostics::add(const toml::value* where, const std::string& key,
+                            const std::string& message) {
+  problems.push_back(located(file, where, key, message));
+}
+
+void ConfigDiagnostics::warn(const toml::value* where, const std::string& key,
+                             const std::string& message) {
+  warnings.push_back(located(file, where, key, message));
 }
 
 void ConfigDiagnostics::throw_if_any() const {
@@ -66,6 +80,11 @@ std::string TomlReader::full_key(const std::string& key) const {
 void TomlReader::error(const std::string& key, const std::string& message) {
   const toml::value* v = table_->is_table() && table_->contains(key) ? &table_->at(key) : table_;
   diag_->add(v, full_key(key), message);
+}
+
+void TomlReader::warn(const std::string& key, const std::string& message) {
+  const toml::value* v = table_->is_table() && table_->contains(key) ? &table_->at(key) : table_;
+  diag_->warn(v, full_key(key), message);
 }
 
 bool TomlReader::has(const std::string& key) const {

@@ -36,7 +36,11 @@ struct Range {
 struct ConfigDiagnostics {
   std::string file;
   std::vector<std::string> problems;
+  // What the config allows but the user should know (e.g. a clump with a buried sphere): said on
+  // standard error and kept in metrics.json ("warnings"); never stops a run.
+  std::vector<std::string> warnings;
   void add(const toml::value* where, const std::string& key, const std::string& message);
+  void warn(const toml::value* where, const std::string& key, const std::string& message);
   void throw_if_any() const;
 };
 
@@ -78,6 +82,7 @@ class TomlReader {
   // Reports every key of this table that no call above asked for.
   void check_unknown_keys();
   void error(const std::string& key, const std::string& message);
+  void warn(const std::string& key, const std::string& message);
   std::string full_key(const std::string& key) const;
   const std::string& prefix() const { return prefix_; }
   ConfigDiagnostics& diagnostics() { return *diag_; }

@@ -48,10 +48,11 @@ nlohmann::json run_with(const SceneFile& f, const SceneContext& ctx, int repeats
 
 }  // namespace
 
-void check_scene(const SceneFile& f) {
+std::vector<std::string> check_scene(const SceneFile& f) {
   SceneContext ctx{f.path, "", 1, 0, {}};
   ctx.check_only = true;  // the runner reads its whole config and returns before simulating
-  run_with(f, ctx, 1);
+  const nlohmann::json j = run_with(f, ctx, 1);
+  return j.value("warnings", std::vector<std::string>{});
 }
 
 nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir,

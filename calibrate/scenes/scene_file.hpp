@@ -26,8 +26,9 @@ struct SceneFile {
 SceneFile load_scene_file(const std::string& path, const std::vector<std::string>& sets);
 
 // Reads every key of the scene as a run would ([output] and `repeats` included) and throws
-// InputError naming the file, key, value and range for the first bad one; runs nothing.
-void check_scene(const SceneFile& scene);
+// InputError naming the file, key, value and range for the first bad one; runs nothing. Returns
+// the config's warnings (what a run would say under "warnings").
+std::vector<std::string> check_scene(const SceneFile& scene);
 
 // Runs `repeats` seeds (seed, seed + 1, ...), `jobs` at a time; repeats = 0: the file's own
 // `repeats`.

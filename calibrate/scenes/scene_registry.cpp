@@ -111,6 +111,8 @@ nlohmann::json run_one(const SceneRunner& runner, const toml::value& doc, const 
     c.observer = trajectory->observer();
   }
   nlohmann::json run = runner(root, c);
+  // The config's warnings (a clump with a buried sphere) beside the scene's own.
+  for (const std::string& w : diag->warnings) run["warnings"].push_back(w);
   if (trajectory) {
     trajectory->finish();
     run["trajectory"] = {{"h5", TrajectoryWriter::kH5Name},

@@ -1,5 +1,6 @@
 #include "calibrate/study/run_study.hpp"
 
+#include <iostream>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
@@ -172,7 +173,9 @@ WorkerCommand worker_command(const StudyRunOptions& o) {
 
 nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   const StudyConfig s = read_study(o.study_file, o.sets);
-  check_study_scenes(s);  // bad input is refused before any run (exit 2)
+  // Bad input is refused before any run (exit 2); warnings are said now and logged below.
+  const std::vector<std::string> warnings = check_study_scenes(s);
+  for (const std::string& w : warnings) std::cerr << "seedcal: warning: " << w << "\n";
   const std::string hash = study_fingerprint(s);
   std::unique_ptr<Executor> own;
   if (!executor) {
@@ -191,6 +194,7 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
   progress.log("study " + s.name + " (" + s.file + "), fingerprint " + hash + ", " + executor->describe() +
                (store.evaluations().empty() ? "" : ", resuming with " + std::to_string(store.evaluations().size()) + " stored runs"));
 
+  for (const std::string& w : warnings) progress.log("warning: " + w);
   StudyEvaluator ev(s, store, *executor, progress);
   PipelineState st;
   auto checkpoint = [&](const std::string& stage) {

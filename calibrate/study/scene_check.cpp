@@ -1,5 +1,6 @@
 #include "calibrate/study/scene_check.hpp"
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -9,7 +10,7 @@
 
 namespace seedcal {
 
-void check_study_scenes(const StudyConfig& s) {
+std::vector<std::string> check_study_scenes(const StudyConfig& s) {
   // The parameters all at their nominal values, all at their lower limits, all at their upper
   // limits: each scene key's range is checked on its own, so this covers every value the
   // screening, the ascent and the surrogate may set.
@@ -20,7 +21,8 @@ void check_study_scenes(const StudyConfig& s) {
   const Setting settings[] = {{"nominal", &StudyParameter::nominal},
                               {"lower limits (min)", &StudyParameter::min},
                               {"upper limits (max)", &StudyParameter::max}};
-  std::vector<std::string> problems;
+  std::vector<std::string> problems, warnings;
+  std::set<std::string> seen;
   for (const StudyModel& model : s.models) {
     for (int i = 0; i < s.scene_count(); ++i) {
       const StudyTarget& t = s.scene_of(i);
@@ -28,7 +30,9 @@ void check_study_scenes(const StudyConfig& s) {
         nlohmann::json inputs = nlohmann::json::object();
         for (const StudyParameter& p : s.parameters) inputs[p.path] = p.*at.value;
         try {
-          check_scene(load_scene_file(t.scene, scene_overrides(model, t, inputs)));
+          for (const std::string& w : check_scene(load_scene_file(t.scene, scene_overrides(model, t, inputs))))
+            if (seen.insert(w).second)
+              warnings.push_back(s.file + ": test \"" + t.name + "\" under model \"" + model.name + "\": " + w);
         } catch (const InputError& e) {
           const std::string where = s.file + ": " + (i < static_cast<int>(s.targets.size()) ? "target" : "verification test") +
                                     " \"" + t.name + "\" under model \"" + model.name + "\", parameters at their " +
@@ -43,6 +47,7 @@ void check_study_scenes(const StudyConfig& s) {
     }
   }
   if (!problems.empty()) throw InputError(problems);
+  return warnings;
 }
 
 }  // namespace seedcal

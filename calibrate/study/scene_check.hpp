@@ -4,10 +4,14 @@
 // their limits) is read and validated as a run would read it. A misspelt override, a missing clump
 // file or a parameter range the scene does not allow is bad input (InputError, exit 2) naming the
 // study, the test, the model and the scene's own message, not a failure of every DEM run.
+#include <string>
+#include <vector>
+
 #include "calibrate/study/study_config.hpp"
 
 namespace seedcal {
 
-void check_study_scenes(const StudyConfig& s);
+// Returns the scenes' warnings (each once, with the test and model it was first seen under).
+std::vector<std::string> check_study_scenes(const StudyConfig& s);
 
 }  // namespace seedcal
