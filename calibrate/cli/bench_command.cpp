@@ -46,6 +46,7 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
       TomlReader reader(empty, "", diag);
       auto spheres = load_clump_spheres(a->clump_file, reader, "clump_file");
       diag->throw_if_any();
+      for (const std::string& w : diag->warnings) std::cerr << "seedcal: warning: " << w << "\n";
       spec = clump_bed_spec(std::move(spheres));
     }
     if (a->settle_steps >= 0) spec.settle_steps = static_cast<std::uint64_t>(a->settle_steps);

@@ -1,4 +1,5 @@
-// End-to-end: `seedcal run` on impact scenes: exit codes, metrics keys, --set, bad input (and a drum
+// End-to-end: `seedcal run` on impact scenes: exit codes, metrics keys, --set, bad input, missing
+// interactions, the buried-sphere warning (and a drum
 // rig key's bad input, refused before anything runs).
 #include <gtest/gtest.h>
 
@@ -140,6 +141,24 @@ TEST(RunImpactCli, SeedSeedPairWithoutAnInteractionIsRefused) {
       << r.output;
   EXPECT_NE(r.output.find("between = [\"seed\", \"seed\"]"), std::string::npos) << r.output;
   EXPECT_FALSE(std::filesystem::exists(dir + "/out/metrics.json"));
+}
+
+// A clump with spheres wholly inside another runs, but the reader names them: on standard error and
+// in metrics.json. A clump file written here: a 4 mm sphere holding a 1 mm one, and a third sphere
+// reaching half its radius out.
+TEST(RunImpactCli, BuriedSpheresAreNamedAsAWarning) {
+  const std::string dir = testing::scratch_dir("buried-warning");
+  testing::write_text(dir + "/buried.txt", "0 0 0 0.004\n0.001 0 0 0.001\n0.0035 0 0 0.001\n");
+  const auto r = run_cli("run " + testing::source_dir() + "/data/scenes/jinong1/free_drop.toml --out " + dir +
+                         "/out --set particle.clump_file=\\\"" + dir + "/buried.txt\\\"");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("seedcal: warning:"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("1 of 3 spheres lie inside another sphere"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sphere 2 (r = 0.001 m"), std::string::npos) << r.output;
+  const auto j = nlohmann::json::parse(testing::read_text(dir + "/out/metrics.json"));
+  ASSERT_TRUE(j.contains("warnings")) << j.dump(1);
+  ASSERT_EQ(j["warnings"].size(), 1u);
+  EXPECT_NE(j["warnings"][0].get<std::string>().find("in sphere 1 (r = 0.004 m"), std::string::npos) << j["warnings"];
 }
 
 TEST(RunImpactCli, DrumShellFacetsOutOfRangeExitTwo) {
