@@ -56,7 +56,16 @@ TEST(StudyCli, StiffnessRowsReportEachModulus) {
     }
   }
   EXPECT_EQ(j["rows"][1]["status"], "ok") << j.dump(1);
-  EXPECT_TRUE(j["rebound_rises_with_E"].is_boolean());
+  // The verdict is the rows' own: the rebound of every completed modulus at least the previous
+  // one's. (Whether it rises is the model's answer, not a fixed truth: the paper's Figure 26 says
+  // it does, the tradeoff study measures the opposite on one clump, docs/studies.md.)
+  std::vector<double> means;
+  for (const auto& r : j["rows"])
+    if (r["status"] == "ok") means.push_back(r["rebound_height_m"]["mean"].get<double>());
+  bool rises = means.size() >= 2;
+  for (std::size_t i = 1; i < means.size(); ++i) rises = rises && means[i] >= means[i - 1];
+  EXPECT_EQ(j["rows_completed"].get<std::size_t>(), means.size()) << j.dump(1);
+  EXPECT_EQ(j["rebound_rises_with_E"].get<bool>(), rises) << j.dump(1);
   const std::string csv = read_text(dir + "/stiffness.csv");
   EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
   std::filesystem::remove_all(dir);

@@ -89,7 +89,8 @@ TEST(Rolling, EpsdAndStaticCdtRestWithoutSpinJitterLiteralCdtJitters) {
   const double inertia = probe.bodies().principal_inertia[0].x();
   const double bound = 0.1 * mass * kG * kR * probe.options().dt_s / inertia;
   EXPECT_LT(w_literal, 2.0 * bound);
-  EXPECT_GT(w_literal, 0.01 * bound);  // measured 0.019 of the bound
+  // ... and above the 1e-6 rad/s that the two models at rest stay under: the jitter is real.
+  EXPECT_GT(w_literal, 1e-6);
 }
 
 // A sphere resting on the plane and spinning about the vertical: a point contact has no torsional
