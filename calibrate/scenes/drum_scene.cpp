@@ -38,9 +38,11 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   j["index_key"] = "dynamic_angle_of_repose_deg";
   j["dynamic_angle_of_repose_deg"] = r.dynamic_angle_of_repose_deg;
   j["dynamic_angle_frames_sd_deg"] = r.angle_sd_deg;
+  j["dynamic_angle_frames_measured"] = r.measured_frames;
+  j["dynamic_angle_frames_failed"] = r.failed_frames;
   nlohmann::json frames = nlohmann::json::array();
   for (const DrumFrame& f : r.frames)
-    frames.push_back({{"time_s", f.time_s}, {"angle_deg", f.angle_deg}, {"r2", f.fit.r2},
+    frames.push_back({{"time_s", f.time_s}, {"fit_ok", f.fit.ok}, {"angle_deg", f.angle_deg}, {"r2", f.fit.r2},
                       {"wall_layer_speed_ratio", f.wall_layer_speed_ratio}});
   j["frames"] = frames;
   j["wall_layer_speed_ratio"] = r.wall_layer_speed_ratio;
@@ -54,7 +56,15 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
          "shell's friction, not by the bed's flow, and do not change with the speed; a shell with "
          "more grip (the drum's lining: a higher static_friction between the seeds and "
       << drum_material << ") carries the bed";
-    j["warnings"] = nlohmann::json::array({w.str()});
+    j["warnings"].push_back(w.str());
+  }
+  if (r.failed_frames > 0) {
+    std::ostringstream w;
+    w << "the surface line fit failed in " << r.failed_frames << " of " << r.frames.size()
+      << " frames (fewer than 3 surface points in the fit band): the dynamic angle and its sd are over the "
+      << r.measured_frames << " measured frames"
+      << (r.measured_frames == 0 ? ", so there is none: widen fit_width_fraction or fill the drum more" : "");
+    j["warnings"].push_back(w.str());
   }
   j["speed_rpm"] = spec.speed_rpm;
   j["shell_facets"] = spec.shell_facets;

@@ -1,3 +1,4 @@
+#include "doe/core/random.hpp"
 #include "doe/designs/latin_hypercube.hpp"
 
 #include <limits>
@@ -26,7 +27,7 @@ double min_pairwise_distance(const Eigen::MatrixXd& x) {
 namespace {
 
 std::uint64_t below(std::mt19937_64& rng, std::uint64_t n) { return rng() % n; }  // bias < n/2^64
-double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double unit(std::mt19937_64& rng) { return unit_uniform(rng); }
 
 }  // namespace
 

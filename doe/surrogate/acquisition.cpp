@@ -1,3 +1,4 @@
+#include "doe/core/random.hpp"
 #include "doe/surrogate/acquisition.hpp"
 
 #include <cmath>
@@ -100,13 +101,12 @@ double negative_acquisition(const std::vector<double>& v, std::vector<double>&, 
 
 Eigen::VectorXd next_point(const GaussianProcess& gp, const AcquisitionOptions& o, std::mt19937_64& rng) {
   const Ctx ctx{&gp, &o, incumbent(gp, o)};
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const auto d = o.lower.size();
+    const auto d = o.lower.size();
   Eigen::VectorXd best_x = 0.5 * (o.lower + o.upper);
   double best = -std::numeric_limits<double>::infinity();
   for (int c = 0; c < o.candidates; ++c) {
     Eigen::VectorXd x(d);
-    for (Eigen::Index j = 0; j < d; ++j) x(j) = o.lower(j) + (o.upper(j) - o.lower(j)) * u(rng);
+    for (Eigen::Index j = 0; j < d; ++j) x(j) = o.lower(j) + (o.upper(j) - o.lower(j)) * unit_uniform(rng);
     const double a = acquisition_value(gp, x, o, ctx.inc);
     if (a > best) { best = a; best_x = x; }
   }

@@ -1,3 +1,4 @@
+#include "doe/core/random.hpp"
 #include "doe/surrogate/gaussian_process.hpp"
 
 #include <algorithm>
@@ -152,8 +153,7 @@ GaussianProcess GaussianProcess::fit(const Eigen::MatrixXd& X, const Eigen::Vect
     return negative_log_likelihood(c->g->options_.kernel, c->g->Xn_, c->g->yn_, c->g->H_, c->full(v));
   };
   std::mt19937_64 rng(o.seed);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  double best = std::numeric_limits<double>::infinity();
+    double best = std::numeric_limits<double>::infinity();
   std::vector<double> best_v;
   for (int s = 0; s < o.starts; ++s) {
     std::vector<double> v(static_cast<std::size_t>(np));
@@ -161,7 +161,7 @@ GaussianProcess GaussianProcess::fit(const Eigen::MatrixXd& X, const Eigen::Vect
       const auto k = static_cast<std::size_t>(j);
       // First start: length 0.3 of the range, unit signal, noise 1e-3; then uniform in the box.
       const double first = j < d ? std::log(0.3) : j == d ? 0.0 : std::log(1e-3);
-      v[k] = s == 0 ? std::clamp(first, lo[k], hi[k]) : lo[k] + (hi[k] - lo[k]) * u(rng);
+      v[k] = s == 0 ? std::clamp(first, lo[k], hi[k]) : lo[k] + (hi[k] - lo[k]) * unit_uniform(rng);
     }
     nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(np));
     opt.set_lower_bounds(lo);

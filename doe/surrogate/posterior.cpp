@@ -1,3 +1,4 @@
+#include "doe/core/random.hpp"
 #include "doe/surrogate/posterior.hpp"
 
 #include <algorithm>
@@ -62,10 +63,9 @@ Posterior posterior(const std::vector<TargetEvidence>& targets, const PosteriorO
       }
   } else {
     std::mt19937_64 rng(o.seed);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    pts.resize(std::max(1000, o.samples), k);
+        pts.resize(std::max(1000, o.samples), k);
     for (Eigen::Index i = 0; i < pts.rows(); ++i)
-      for (Eigen::Index d = 0; d < k; ++d) pts(i, d) = o.lower(d) + u(rng) * (o.upper(d) - o.lower(d));
+      for (Eigen::Index d = 0; d < k; ++d) pts(i, d) = o.lower(d) + unit_uniform(rng) * (o.upper(d) - o.lower(d));
   }
 
   Eigen::VectorXd logp(pts.rows());

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "solver/scenes/settle.hpp"
@@ -10,6 +11,26 @@
 #include "solver/walls/motion_laws.hpp"
 
 namespace seedcal {
+
+void summarize_frame_angles(DrumResult& res) {
+  std::vector<double> a;
+  for (const DrumFrame& f : res.frames)
+    if (f.fit.ok) a.push_back(f.angle_deg);
+  res.measured_frames = static_cast<int>(a.size());
+  res.failed_frames = static_cast<int>(res.frames.size() - a.size());
+  // Mean and sample sd (two passes) over the measured frames only: a failed fit is no angle of 0.
+  if (a.empty()) {
+    res.dynamic_angle_of_repose_deg = std::numeric_limits<double>::quiet_NaN();
+    res.angle_sd_deg = 0.0;
+    return;
+  }
+  const double n = static_cast<double>(a.size());
+  double mean = 0.0, ss = 0.0;
+  for (double x : a) mean += x / n;
+  for (double x : a) ss += (x - mean) * (x - mean);
+  res.dynamic_angle_of_repose_deg = mean;
+  res.angle_sd_deg = a.size() > 1 ? std::sqrt(ss / (n - 1.0)) : 0.0;
+}
 
 double drum_fill_height(double radius_m, double filling_rate) {
   // f(eps) = (eps - sin eps cos eps) / pi rises monotonically from 0 (eps = 0) to 1 (eps = pi):
@@ -118,7 +139,7 @@ DrumResult run_drum(const DrumSpec& spec) {
 
   double d = 0.0;
   for (const SphereDef& s : spec.seeds.body.spheres) d = std::max(d, 2.0 * (s.offset_m.norm() + s.radius_m));
-  double sum = 0.0, sum2 = 0.0, ratio_sum = 0.0;
+  double ratio_sum = 0.0;
   res.run.stop_reason = "all frames taken";
   for (double tf : spec.frame_times_s) {
     if (!run_for(sim, std::max(0.0, t0 + tf - sim.time_s()))) {
@@ -145,19 +166,11 @@ DrumResult run_drum(const DrumSpec& spec) {
     fr.wall_layer_speed_ratio = wall_layer_speed_ratio(sim.bodies(), R, d, w);
     ratio_sum += fr.wall_layer_speed_ratio;
     res.slipping_frames += std::abs(fr.wall_layer_speed_ratio) < kSlippingSpeedRatio;
-    if (fr.fit.ok) {
-      fr.angle_deg = std::atan(std::abs(fr.fit.slope)) * 180.0 / std::numbers::pi;
-      sum += fr.angle_deg;
-      sum2 += fr.angle_deg * fr.angle_deg;
-    }
+    if (fr.fit.ok) fr.angle_deg = std::atan(std::abs(fr.fit.slope)) * 180.0 / std::numbers::pi;
     res.frames.push_back(fr);
   }
-  const double n = static_cast<double>(res.frames.size());
-  if (n > 0) {
-    res.dynamic_angle_of_repose_deg = sum / n;
-    res.wall_layer_speed_ratio = ratio_sum / n;
-    res.angle_sd_deg = n > 1 ? std::sqrt(std::max(0.0, (sum2 - n * res.dynamic_angle_of_repose_deg * res.dynamic_angle_of_repose_deg) / (n - 1))) : 0.0;
-  }
+  if (!res.frames.empty()) res.wall_layer_speed_ratio = ratio_sum / static_cast<double>(res.frames.size());
+  summarize_frame_angles(res);
   res.run.failure = sim.failure();
   res.spheres = body_spheres(sim);
   finish_report(res.run, sim, cpu0, wall_t0);

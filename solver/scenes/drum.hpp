@@ -54,6 +54,8 @@ struct DrumResult {
   RunReport run;
   double dynamic_angle_of_repose_deg = 0.0;
   double angle_sd_deg = 0.0;
+  int measured_frames = 0;  // frames whose surface line fit succeeded: the mean and sd are over these
+  int failed_frames = 0;    // frames whose fit failed (fewer than 3 surface points in the fit band)
   double wall_layer_speed_ratio = 0.0;  // mean over the frames (DrumFrame)
   // Frames in which the shell slides under a bed at rest (|ratio| < kSlippingSpeedRatio,
   // Mellmann's slipping regime): their angle is held by the wall friction, not a dynamic angle of
@@ -65,6 +67,11 @@ struct DrumResult {
   std::vector<DrumFrame> frames;
   std::vector<std::vector<std::pair<Vec3, double>>> spheres;  // at the last frame
 };
+
+// The dynamic angle over the frames whose surface line fit succeeded (DrumFrame::fit.ok): mean,
+// sample sd (n - 1; 0 for one frame) and the counts of measured and failed frames. The mean is NaN
+// when no frame was measured. Sets the four fields of `res` from res.frames.
+void summarize_frame_angles(DrumResult& res);
 
 // Bed height for a filling rate: solves f = (eps - sin eps cos eps) / pi for eps, h = Rc (1 - cos eps).
 double drum_fill_height(double radius_m, double filling_rate);

@@ -44,6 +44,28 @@ TEST(DrumWallLayer, OneForABedTurningWithTheShellZeroForABedAtRest) {
   EXPECT_EQ(wall_layer_speed_ratio(ring(R - 0.5 * d, w, 0, 0.0), R, d, 0.0), 0.0);
 }
 
+// A frame whose surface fit failed carries no angle: the mean and sd are over the measured frames
+// and the failed one is counted (before, its 0 entered the mean and the count).
+TEST(DrumFrames, MeanAndSdOverTheMeasuredFramesOnly) {
+  DrumResult r;
+  auto frame = [](double angle, bool ok) {
+    DrumFrame f{};
+    f.angle_deg = angle;
+    f.fit.ok = ok;
+    return f;
+  };
+  r.frames = {frame(40.0, true), frame(0.0, false), frame(44.0, true), frame(42.0, true)};
+  summarize_frame_angles(r);
+  EXPECT_EQ(r.measured_frames, 3);
+  EXPECT_EQ(r.failed_frames, 1);
+  EXPECT_DOUBLE_EQ(r.dynamic_angle_of_repose_deg, 42.0);
+  EXPECT_DOUBLE_EQ(r.angle_sd_deg, 2.0);  // sqrt((4 + 4 + 0) / 2)
+  r.frames = {frame(0.0, false)};
+  summarize_frame_angles(r);
+  EXPECT_EQ(r.measured_frames, 0);
+  EXPECT_TRUE(std::isnan(r.dynamic_angle_of_repose_deg));  // no angle, not 0
+}
+
 TEST(DrumFill, HeightGivesTheFillingRateBack) {
   const double R = 0.1;
   for (double f : {0.01, 0.1104, 0.3, 0.5, 0.8}) {

@@ -39,9 +39,9 @@ struct FreeDropResult {
 
 FreeDropResult run_free_drop(const FreeDropSpec& spec);
 
-// Uniformly distributed random rotation (Shoemake 1992, "Uniform random rotations").
-template <class Rng>
-Quat uniform_random_rotation(Rng& rng);
+// Uniformly distributed random rotation (Shoemake 1992, "Uniform random rotations"), from
+// portable uniforms (core/portable_random.hpp): the same rotation for a seed on any library.
+inline Quat uniform_random_rotation(std::mt19937_64& rng);
 
 }  // namespace seedcal
 

@@ -1,3 +1,4 @@
+#include "solver/core/portable_random.hpp"
 #include "solver/sim/particle_factory.hpp"
 
 #include <algorithm>
@@ -96,8 +97,8 @@ FactoryResult insert_particles(Simulation& sim, const FactorySpec& spec) {
   for (std::size_t i = 0; i < sim.spheres().size(); ++i)
     grid.add(sim.spheres().position_m[i], sim.spheres().radius_m[i]);
 
-  std::normal_distribution<double> normal(sc.mean, sc.sd);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  PortableNormal normal(sc.mean, sc.sd);
+  const PortableUniform u01(0.0, 1.0);
   const std::uint64_t max_attempts =
       spec.max_attempts > 0 ? spec.max_attempts
                             : (spec.count > 0 ? 1000 * spec.count : std::uint64_t{1000000});
@@ -129,7 +130,9 @@ FactoryResult insert_particles(Simulation& sim, const FactorySpec& spec) {
     if (R.kind == InsertionRegion::Kind::box) {
       const Vec3 lo = R.lo_m + Vec3::Constant(e), hi = R.hi_m - Vec3::Constant(e);
       if ((hi - lo).minCoeff() < 0.0) { res.stop_reason = "the region is smaller than one particle"; return res; }
-      b.position_m = lo + Vec3(u01(rng) * (hi.x() - lo.x()), u01(rng) * (hi.y() - lo.y()), u01(rng) * (hi.z() - lo.z()));
+      // Drawn in a fixed order (the order of a call's arguments is unspecified in C++).
+      const double fx = u01(rng), fy = u01(rng), fz = u01(rng);
+      b.position_m = lo + Vec3(fx * (hi.x() - lo.x()), fy * (hi.y() - lo.y()), fz * (hi.z() - lo.z()));
     } else {
       const double rr = R.radius_m - e, hh = R.height_m - 2.0 * e;
       if (rr < 0.0 || hh < 0.0) { res.stop_reason = "the region is smaller than one particle"; return res; }
