@@ -53,6 +53,8 @@ void add_calibrate_command(CLI::App& app, GlobalOptions& g) {
   sub->add_option("study", a->run.study_file, "study file (TOML), e.g. data/studies/jinong1-quick.toml")->required();
   sub->add_option("--out", a->run.out_dir, "study directory: study.h5, summary.json, calibrate.log")->required();
   sub->add_flag("--resume", a->run.resume, "continue the study stored in --out (finished runs are not redone)");
+  sub->add_flag("--force-unlock", a->run.force_unlock,
+                "take over the study directory's lock even when another machine holds it (that run must be gone)");
   sub->add_option("--jobs", a->run.jobs, "simulations at once on this machine (worker processes; default 1)")
       ->check(CLI::Range(1, 1024));
   sub->add_option("--set", a->run.sets, "override a study value: key=value (dotted TOML path)");

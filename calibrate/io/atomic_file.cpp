@@ -35,14 +35,42 @@ void write_file_atomic(const std::string& path, const std::string& content) {
     }
     done += static_cast<std::size_t>(n);
   }
-  if (::fsync(fd) != 0 || ::close(fd) != 0) {
+  if (::close(fd) != 0) {
     ::unlink(tmp.c_str());
-    throw RunFailed("cannot flush " + tmp + ": " + std::strerror(errno));
+    throw RunFailed("cannot close " + tmp + ": " + std::strerror(errno));
+  }
+  commit_file_atomic(tmp, path);
+}
+
+namespace {
+
+void fsync_or_throw(const std::string& path, int flags, const std::string& what) {
+  const int fd = ::open(path.c_str(), flags);
+  if (fd < 0) throw RunFailed("cannot open " + path + " to flush " + what + ": " + std::strerror(errno));
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  // EINVAL: a folder on a file system that cannot sync directories; the rename is still atomic.
+  if (rc != 0 && !(err == EINVAL && (flags & O_DIRECTORY)))
+    throw RunFailed("cannot flush " + what + " " + path + ": " + std::strerror(err));
+}
+
+}  // namespace
+
+void commit_file_atomic(const std::string& tmp, const std::string& path) {
+  try {
+    fsync_or_throw(tmp, O_RDONLY, "the file");
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string err = std::strerror(errno);
     ::unlink(tmp.c_str());
-    throw RunFailed("cannot rename " + tmp + " to " + path + ": " + std::strerror(errno));
+    throw RunFailed("cannot rename " + tmp + " to " + path + ": " + err);
   }
+  const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  fsync_or_throw(dir.empty() ? "." : dir.string(), O_RDONLY | O_DIRECTORY, "the folder");
 }
 
 std::string find_non_finite(const nlohmann::json& j, const std::string& where) {

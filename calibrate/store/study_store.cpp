@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "calibrate/cli/errors.hpp"
+#include "calibrate/io/atomic_file.hpp"
 #include "calibrate/store/hdf5_handle.hpp"
 
 namespace seedcal {
@@ -41,14 +42,6 @@ std::vector<T> read_numbers(hid_t group, const char* name, hid_t mem_type) {
   std::vector<T> out(n);
   if (n > 0) h5::check(H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + name);
   return out;
-}
-
-void fsync_path(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd < 0) throw RunFailed("cannot reopen " + path + " to flush it: " + std::strerror(errno));
-  const int rc = ::fsync(fd);
-  ::close(fd);
-  if (rc != 0) throw RunFailed("cannot flush " + path + ": " + std::strerror(errno));
 }
 
 }  // namespace
@@ -221,11 +214,7 @@ void StudyStore::write() const {
     write_string_attr(st, "stages_json", stages_.dump());
     h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flush " + tmp);
   }
-  fsync_path(tmp);
-  if (std::rename(tmp.c_str(), path_.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw RunFailed("cannot rename " + tmp + " to " + path_ + ": " + std::strerror(errno));
-  }
+  commit_file_atomic(tmp, path_);  // fsync, rename, fsync the folder (io/atomic_file.hpp)
 }
 
 }  // namespace seedcal

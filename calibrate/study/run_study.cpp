@@ -1,3 +1,4 @@
+#include "calibrate/io/study_lock.hpp"
 #include "calibrate/study/run_study.hpp"
 
 #include <iostream>
@@ -183,6 +184,11 @@ nlohmann::json run_study(const StudyRunOptions& o, Executor* executor) {
     executor = own.get();
   }
   std::filesystem::create_directories(o.out_dir);
+  // One calibrate at a time on a study directory (io/study_lock.hpp): taken before the store is
+  // read, held until the summary is written.
+  std::vector<std::string> lock_warnings;
+  const StudyLock lock(o.out_dir, o.force_unlock, lock_warnings);
+  for (const std::string& w : lock_warnings) std::cerr << "seedcal: warning: " << w << "\n";
   StudyStore store = open_store(o, s, hash);
   Progress progress(o.out_dir + "/calibrate.log", o.progress_on_terminal && ::isatty(STDERR_FILENO), executor->slots());
   const auto t0 = std::chrono::steady_clock::now();

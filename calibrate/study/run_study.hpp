@@ -16,6 +16,9 @@ struct StudyRunOptions {
   int jobs = 1;
   int threads = 1;
   bool progress_on_terminal = true;
+  // Take over the study directory's lock even when it is held from another machine
+  // (io/study_lock.hpp).
+  bool force_unlock = false;
 };
 
 // Returns the summary (also written to DIR/summary.json). `executor` may be null: a worker pool

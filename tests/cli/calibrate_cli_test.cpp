@@ -3,7 +3,9 @@
 // jointly (contact time and peak force, two unknowns); bad study files exit 2 naming the key;
 // a finished study resumes entirely from its store; a changed study is refused.
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -122,6 +124,69 @@ TEST(CalibrateCli, AValueAtItsLimitIsFlagged) {
   const std::string path = "materials.glass.youngs_modulus_pa";
   ASSERT_TRUE(s["posterior"]["at_edge"].contains(path)) << s["posterior"].dump(1);
   EXPECT_NE(s["posterior"]["at_edge"][path].get<std::string>().find("limit"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+// Two calibrations of one study directory at once (a requeued cluster job, a second terminal):
+// the second exits 2 naming the first's host and pid, and the first finishes with its store intact.
+TEST(CalibrateCli, SecondRunOnALockedDirectoryExitsTwo) {
+  const std::string dir = scratch_dir("calibrate-lock");
+  const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
+  write_text(dir + "/study.toml", study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
+  const std::string cmd = seedcal_binary() + " calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 1 --threads 1";
+  std::system(("(" + cmd + " > " + dir + "/first.log 2>&1; echo $? > " + dir + "/first.rc) &").c_str());
+  // The first run takes the lock before it reads or writes the store.
+  for (int k = 0; k < 3000 && !std::filesystem::exists(dir + "/out/calibrate.lock") &&
+                  !std::filesystem::exists(dir + "/first.rc");
+       ++k)
+    ::usleep(10000);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/out/calibrate.lock")) << read_text(dir + "/first.log");
+  const auto second = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --jobs 1 --threads 1");
+  EXPECT_EQ(second.exit_code, 2) << second.output;
+  EXPECT_NE(second.output.find("another seedcal calibrate is running on this study directory"), std::string::npos)
+      << second.output;
+  EXPECT_NE(second.output.find("pid "), std::string::npos) << second.output;
+  for (int k = 0; k < 30000 && !std::filesystem::exists(dir + "/first.rc"); ++k) ::usleep(10000);
+  ASSERT_TRUE(std::filesystem::exists(dir + "/first.rc"));
+  EXPECT_EQ(std::stoi(read_text(dir + "/first.rc")), 0) << read_text(dir + "/first.log");
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  EXPECT_TRUE(s["converged"].get<bool>()) << s.dump(1);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/calibrate.lock"));  // released at the end
+  // The store the first run left resumes: nothing is redone.
+  const auto again = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --jobs 1 --threads 1");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(nlohmann::json::parse(read_text(dir + "/out/summary.json"))["evaluations"], s["evaluations"]);
+  std::filesystem::remove_all(dir);
+}
+
+// A lock left by a process that is gone on this host is taken over with a warning; one from another
+// host is refused until --force-unlock says that run is gone.
+TEST(CalibrateCli, StaleLocksAreTakenOverOrNeedForceUnlock) {
+  const std::string dir = scratch_dir("calibrate-stale-lock");
+  const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
+  write_text(dir + "/study.toml", study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
+  std::filesystem::create_directories(dir + "/out");
+  char host[256] = {};
+  ::gethostname(host, sizeof host - 1);
+  // A pid that has exited: a child that ran and was reaped.
+  const auto gone = run_shell("sh -c 'echo $$'");
+  const long dead_pid = std::stol(gone.output);
+  write_text(dir + "/out/calibrate.lock", nlohmann::json({{"host", host}, {"pid", dead_pid}, {"started_utc", "x"}}).dump());
+  const auto r = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 1 --threads 1");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("took over the study lock"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("that process is gone"), std::string::npos) << r.output;
+
+  write_text(dir + "/out/calibrate.lock",
+             nlohmann::json({{"host", "some-other-node"}, {"pid", 4242}, {"started_utc", "x"}}).dump());
+  const auto refused = run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --jobs 1 --threads 1");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("host some-other-node, pid 4242"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("--force-unlock"), std::string::npos) << refused.output;
+  const auto forced =
+      run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --resume --force-unlock --jobs 1 --threads 1");
+  EXPECT_EQ(forced.exit_code, 0) << forced.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out/calibrate.lock"));
   std::filesystem::remove_all(dir);
 }
 

@@ -15,7 +15,7 @@ using testing::expect_out_files;
 using testing::expect_run_report;
 using testing::run_quick_scene;
 
-TEST(ScenesQuick, DirectShearStrengthIsSensibleAndRisesWithFriction) {
+TEST(ScenesQuick, DirectShearStrengthIsSensibleAtBothFrictions) {
   std::vector<double> lo, hi;
   for (int s = 1; s <= 3; ++s) {
     const auto a = run_quick_scene("direct_shear", "--seed " + std::to_string(s) + " --set seed_seed.static_friction=0.1", "ds-lo" + std::to_string(s));
@@ -46,14 +46,13 @@ TEST(ScenesQuick, DirectShearStrengthIsSensibleAndRisesWithFriction) {
   // Sensible: a stress ratio tau / sigma between 0.1 and 1.5 at 200 kPa.
   for (double x : lo) EXPECT_GT(x, 0.1 * 2e5);
   for (double x : hi) EXPECT_LT(x, 1.5 * 2e5);
-  // The quick box holds ~100 seeds in two layers, so one run's strength scatters by tens of kPa,
-  // and at the 4 mm the failure rule reads (GB/T 50123) interlock across the split, not sliding,
-  // carries most of it: mu 0.1 -> 1.0 measures 105 -> 127 kPa on seeds 1-3 (103 -> 123 kPa over
-  // seeds 1-6, 0.78 pooled sd; docs/scenes/direct_shear.md). The direction is asserted on these
-  // fixed seeds (deterministic for a seed and a thread count); `seedcal study trend` measures the
-  // size of the effect with more seeds.
+  // The direction of the friction effect is printed, not asserted: the quick box holds ~100 seeds
+  // in two layers, one run's strength scatters by tens of kPa, and at the 4 mm the failure rule
+  // reads (GB/T 50123) interlock across the split, not sliding, carries it. Measured over six seeds
+  // per level, mu_s 0.1 -> 1.0 moves the ZJ box's strength by -0.03 pooled sd (LIGGGHTS on the
+  // same rig: at most 1.1 sd either way; docs/results/direct_shear.md): the sign on three seeds is
+  // noise, and an assertion on it passes or fails with the seeds' draws.
   std::printf("friction effect %.0f Pa = %.2f pooled sd\n", mean(hi) - mean(lo), (mean(hi) - mean(lo)) / pooled);
-  EXPECT_GT(mean(hi), mean(lo));
 }
 
 TEST(ScenesQuick, DirectShearRingHeldAtItsHeightDoesNotLift) {
