@@ -43,7 +43,7 @@ if [ "${SEEDCAL_SKIP_SANITIZE:-0}" != "1" ]; then
   cmake --build --preset asan -j "$jobs"
   # Leaks are detected in every test and in every seedcal process the tests start (the miniature
   # scenes and the two-rank MPI calibration of cli_scenes_mini_test among them); the suppressions
-  # cover the OpenMP and MPI runtimes only (tests/sanitize/lsan.supp).
+  # cover the MPI runtime only (tests/sanitize/lsan.supp).
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 LSAN_OPTIONS=suppressions=$PWD/tests/sanitize/lsan.supp:print_suppressions=0 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     ctest --test-dir build-asan --output-on-failure -j "$jobs" -LE slow | tee build-asan/ctest-asan.log
