@@ -1,7 +1,7 @@
-# Compile-time measures (a clean build on two cores is most of the CI run: README, "Build and CI time").
+# Compile-time measures (a clean build on two cores is most of the CI run: docs/results/build_time.md).
 #
 # Unity builds: the library folders whose files all parse the same heavy headers (toml11,
-# nlohmann_json, Eigen: 3-4 s each per translation unit before any code of ours) compile in
+# nlohmann_json, Eigen), whose parsing dominates each translation unit, compile in
 # batches of SEEDCAL_UNITY_BATCH files. The DEM engine (seedcal_solver) stays one file per unit:
 # it is where the time goes into code generation, not parsing.
 #
@@ -26,10 +26,9 @@ function(seedcal_unity_build target)
 endfunction()
 
 # Sanitizer builds (clang, -O1 by default): the store and report code, which only reads and writes
-# files, compiles at -O0: half the compile time of -O1 under ASan (measured on a
-# unity batch of 8 files: 32 s against 68 s). Code that does arithmetic on Eigen vectors (the DEM
-# engine, doe/, the clump builders in calibrate/, the tests) keeps -O1: at -O0 under ASan it ran
-# 3-10 times slower (the clump tests took 177 s, the command line's clump test 400 s).
+# files, compiles at -O0, which compiles faster and costs that code nothing at run time. Code that
+# does arithmetic on Eigen vectors (the DEM engine, doe/, the clump builders in calibrate/, the
+# tests) keeps -O1: at -O0 under ASan it runs several times slower (docs/results/build_time.md).
 function(seedcal_sanitizer_o0 target)
   if(SEEDCAL_SANITIZE OR SEEDCAL_FUZZ)
     target_compile_options(${target} PRIVATE -O0)

@@ -49,7 +49,7 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   j["slipping_frames"] = r.slipping_frames;
   if (r.slipping_frames > 0) {
     // Said beside the index: such a frame's angle is the bed's angle of failure on the shell, which
-    // no speed changes (docs/scenes/drum.md, "Speed beyond the paper's range").
+    // no speed changes (docs/scenes/drum.md; measured in docs/results/drum.md).
     std::ostringstream w;
     w << "the bed slipped on the shell in " << r.slipping_frames << " of " << r.frames.size()
       << " frames (wall layer below 0.1 of the shell's speed): those angles are held by the "

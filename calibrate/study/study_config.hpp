@@ -109,9 +109,9 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
 // Fingerprint of everything that decides the study's results: the study text and the text of
 // every scene file it names (a changed scene refuses --resume as a changed study does).
 std::string study_fingerprint(const StudyConfig& s);
-// The fingerprint as builds up to commit 36a29a0 computed it: each file named as the study's paths
-// spelt it from the working directory the study was started in. A store written by such a build
-// is accepted on resume when this matches (run_study.cpp) and then takes the current fingerprint.
+// The fingerprint under the older rule: each file named as the study's paths spelt it from the
+// working directory the study was started in. A store fingerprinted by that rule is accepted on
+// resume when this matches (run_study.cpp) and then takes the current fingerprint.
 std::string study_fingerprint_as_spelt(const StudyConfig& s);
 
 }  // namespace seedcal

@@ -53,8 +53,8 @@ TEST(StudyFingerprint, DoesNotDependOnHowTheStudyPathIsSpelt) {
   fs::remove(link);
 }
 
-// The rule of builds up to 36a29a0 (kept to accept their stores on resume): the files named as
-// the paths were spelt, so a relative and an absolute spelling differ there and agree here.
+// The older rule (kept to accept the stores it fingerprinted on resume): the files named as the
+// paths were spelt, so a relative and an absolute spelling differ there and agree here.
 TEST(StudyFingerprint, EarlierBuildsRuleDependsOnTheSpelling) {
   const fs::path root = fs::weakly_canonical(testing::source_dir());
   const StudyConfig absolute = read_study((root / kStudy).string());

@@ -48,8 +48,7 @@ std::size_t list_touching_pairs(const SphereView* __restrict SV, const std::uint
     n += touch;
     // A pair that came apart forgets its spring. Only such a pair's spring is written (a rare,
     // well-predicted branch): the others' springs are zero already or the batch kernel rewrites
-    // them, and the list's springs are not streamed through at every step (VerletList::live();
-    // settled bed, one thread: the contact phase 2-4 % shorter, the same bits).
+    // them, so the list's springs are not streamed through at every step (VerletList::live()).
     if (live[k - k_begin] > touch) {
       double* t = spring + 3 * static_cast<std::size_t>(k);
       t[0] = t[1] = t[2] = 0.0;

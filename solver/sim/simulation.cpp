@@ -210,8 +210,8 @@ inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius) 
 
 // A lone sphere at its body's centre of mass: kick_drift(), views and skin check as for any body,
 // the same operations in the same order, without the orientation (which moves no sphere of it) and
-// the offset: 64 bytes a body and step fewer through a bed larger than the cache (settled bed, one
-// thread: the body pass 0.99 -> 0.76 s per 5,000 steps, the same bits).
+// the offset: 64 bytes a body and step fewer to stream through a bed larger than the cache, with
+// the same bits (docs/results/solver_speed.md).
 [[gnu::always_inline]] inline void lone_sphere_step(
     std::size_t b, bool kick, double hk, double h, double hp, double dt, Vec3* __restrict pos,
     Vec3* __restrict vel, Vec3* __restrict mom, Vec3* __restrict omega,
@@ -370,10 +370,10 @@ void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, 
   // Blocks of bodies, each in two passes: the kick, drift and rotation of the block's clumps,
   // then the views and spheres of all its bodies (a sphere's kick, drift and rotation there). A
   // clump's rotation is a chain of dependent operations (integrate/free_rotation.hpp); in a short
-  // first loop the processor overlaps the chains of several clumps, which the long fused loop did
-  // not let it do (clump bed, one thread: 2.13 -> 1.73 s per 20,000 steps). A block stays in the
-  // first-level cache between the passes; spheres stay in one pass, where a second costs more
-  // than it saves.
+  // first loop the processor overlaps the chains of several clumps, which one loop doing each
+  // body's rotation and spheres together would not let it do (docs/results/solver_speed.md). A
+  // block stays in the first-level cache between the passes; spheres stay in one pass, where a
+  // second costs more than it saves.
   constexpr std::size_t kBlock = 32;
   for (std::size_t b_block = b_begin; b_block < b_end; b_block += kBlock) {
     const std::size_t block_end = std::min(b_end, b_block + kBlock);

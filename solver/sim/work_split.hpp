@@ -20,9 +20,9 @@
 namespace seedcal {
 
 // A listed wall pair costs a shape query and, when it touches, a scalar contact; a listed sphere
-// pair a distance test and, a third to a half of the time, a contact in the batch kernel.
-// Measured per listed pair, one thread: 25 against 8.4 ns on the clump bed, 53 against 14 ns on
-// the settled bed (tests/bench/README.md).
+// pair a distance test and, a third to a half of the time, a contact in the batch kernel. The
+// weight is the ratio of the two costs per listed pair on the benchmark beds
+// (docs/results/solver_speed.md).
 inline constexpr double kWallPairWeight = 3.0;
 
 struct WorkShare {

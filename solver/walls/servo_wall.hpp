@@ -20,7 +20,7 @@
 // measured force answers the wall's own speed within the step. On the bed of servo_wall_test.cpp
 // (500 spheres of 4 mm, E 165 MPa, 200 kPa) alpha = 0.5 and 0.3 drove a limit cycle of +-2.8 %
 // with the mean 1.3 % and 1.0 % low; at 0.1 the lid holds 200 kPa to 3e-8 with no cycle
-// (docs/walls.md). All three reach 2 % of the target in the same 23 ms (the speed cap rules the
+// (docs/results/walls.md). All three reach 2 % of the target in the same 23 ms (the speed cap rules the
 // approach). The speed is
 // capped at `max_speed_m_s`, so the wall never outruns its contacts (quasi-static loading; choose
 // the cap well below the particles' settling speeds, e.g. 0.05-0.2 m/s), and with no contact the

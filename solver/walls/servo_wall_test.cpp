@@ -1,4 +1,4 @@
-// The servo wall holds 200 kPa on a settled bed of seed-like spheres (issue 3: within 2 %).
+// The servo wall holds 200 kPa on a settled bed of seed-like spheres, within 2 %.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -68,7 +68,7 @@ TEST(ServoWall, HoldsTwoHundredKilopascalsOnASettledBed) {
               "lid contacts %d, lid speed %.2e m/s\n",
               stress, stress / 2e5 - 1.0, lo, hi, sim.walls()[li].contacts,
               sim.walls()[li].pose.velocity_m_s.norm());
-  EXPECT_NEAR(stress / 2e5, 1.0, 0.02);  // the issue's requirement
+  EXPECT_NEAR(stress / 2e5, 1.0, 0.02);  // the 2 % stated above
 }
 
 TEST(ServoWall, ApproachesAtTheCapWithoutContactsAndValidates) {

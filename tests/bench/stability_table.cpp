@@ -1,4 +1,4 @@
-// The measured stability table of docs/stability.md (a few minutes; not a test, so nothing here
+// The measured stability table of docs/results/stability.md (a few minutes; not a test, so nothing here
 // can pass or fail): for each corner of the parameter space and each step fraction, whether a run
 // is refused, completes or fails, the restitution that comes out of an impact at each step count
 // and over the contact's entry phase, and the settling bed at each fraction.

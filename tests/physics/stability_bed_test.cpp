@@ -1,5 +1,5 @@
 // Stability of a settling bed (the bulk_density scene in a small box) at the corners that matter
-// for sustained contacts. The measured table of docs/stability.md is printed by
+// for sustained contacts. The measured table of docs/results/stability.md is printed by
 // tests/bench/stability_table.cpp (build/tests/stability_table).
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 #pragma once
 // Corners of the parameter space for the stability sweep (stability_sweep_test.cpp) and for the
-// measured table of docs/stability.md: one particle (a sphere or a clump) against a steel plate,
+// measured table of docs/results/stability.md: one particle (a sphere or a clump) against a steel plate,
 // run through the solver's own scenes (impact, free_drop, bulk_density) in-process.
 #include <cstdint>
 #include <string>

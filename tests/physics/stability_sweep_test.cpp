@@ -24,7 +24,7 @@ namespace {
 // Relative tolerance of the restitution that comes out at n steps per (elastic Hertz) contact with
 // the predicted dashpot velocity (ContactOptions::dashpot_predicted): 1.5 / n + 0.5 %. Where the
 // contact starts within a step moves the outcome; over ten entry phases the largest error measured
-// (docs/stability.md, "Restitution") was 14.4 % at 10 steps per contact (e = 0.05), 8.7 % at 15,
+// (docs/results/stability.md, "Restitution") was 14.4 % at 10 steps per contact (e = 0.05), 8.7 % at 15,
 // 4.9 % at 20 and 1.6 % at 50, and below 0.1 % at 1,000: 1.5 / n bounds all of them; 0.5 % covers
 // the rest.
 double restitution_tolerance(double steps_per_contact) { return 1.5 / steps_per_contact + 0.005; }

@@ -3,7 +3,7 @@
 // the run report, its raw data and its picture, and the index lies in a physically sensible
 // range; the drum's angle rises with its speed where the bed turns with the shell. Their quick rigs
 // against the paper rigs, with three seeds each, and the other trend checks are measured in
-// docs/scenes/README.md and piling.md (too long for the suite).
+// docs/results/scenes.md and piling.md (too long for the suite).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -82,7 +82,7 @@ TEST(DrumQuick, SurfaceHasASensibleAngleAndTheRigsNumbers) {
 // A shell of twelve flat facets (`shell_facets`, a drum made of plates) grips the seeds with its
 // edges at Table 6's seed-steel friction, where the smooth shell lets the bed slip once it has
 // tilted (its wall layer at -0.01 of the shell's speed at 2.5 s, seed 1): here the wall layer moves
-// with the shell on average (0.38 over 2-3 s, seed 1; docs/scenes/drum.md). The end faces stay
+// with the shell on average (0.38 over 2-3 s, seed 1; docs/results/drum.md). The end faces stay
 // flat discs.
 TEST(DrumQuick, FacetedShellCarriesTheBed) {
   const auto j = run_quick_scene("drum", "--seed 1 --set drum.quick.shell_facets=12 --set 'drum.quick.frame_times_s=[2.0,2.5,3.0]'",
