@@ -3,11 +3,11 @@
 #include <filesystem>
 #include <set>
 
-#include "calibrate/cli/version_string.hpp"
-#include "calibrate/io/atomic_file.hpp"
 #include "reports/html_writer.hpp"
 #include "reports/markdown_writer.hpp"
 #include "reports/sections/sections.hpp"
+#include "store/atomic_file.hpp"
+#include "store/version.hpp"
 
 namespace seedcal::reports {
 

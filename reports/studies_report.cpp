@@ -5,10 +5,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "calibrate/cli/errors.hpp"
-#include "calibrate/cli/version_string.hpp"
 #include "reports/report.hpp"
 #include "reports/sections/common.hpp"
+#include "store/errors.hpp"
+#include "store/version.hpp"
 
 namespace seedcal::reports {
 namespace {

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "calibrate/cli/errors.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal::reports {
 

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "calibrate/store/study_store.hpp"
+#include "store/study_store.hpp"
 
 namespace seedcal::reports {
 

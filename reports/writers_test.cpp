@@ -13,11 +13,11 @@
 
 #include <gtest/gtest.h>
 
-#include "calibrate/cli/errors.hpp"
 #include "reports/gnuplot_svg.hpp"
 #include "reports/html_writer.hpp"
 #include "reports/markdown_writer.hpp"
 #include "reports/report.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal::reports {
 namespace {

@@ -4,7 +4,7 @@
 
 #include "calibrate/clumps/fill.hpp"
 #include "calibrate/clumps/moisture.hpp"
-#include "calibrate/cli/errors.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 

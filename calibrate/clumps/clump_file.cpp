@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "calibrate/config/toml_reader.hpp"
-#include "calibrate/io/atomic_file.hpp"
+#include "store/atomic_file.hpp"
 
 namespace seedcal {
 namespace {

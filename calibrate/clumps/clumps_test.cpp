@@ -9,7 +9,6 @@
 
 #include <gtest/gtest.h>
 
-#include "calibrate/cli/errors.hpp"
 #include "calibrate/clumps/clump_build.hpp"
 #include "calibrate/clumps/clump_source.hpp"
 #include "calibrate/clumps/fill.hpp"
@@ -17,6 +16,7 @@
 #include "calibrate/clumps/size_distribution.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "solver/clump/buried_spheres.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 namespace {

@@ -6,7 +6,7 @@
 #include <gsl/gsl_fit.h>
 #include <gsl/gsl_statistics_double.h>
 
-#include "calibrate/cli/errors.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 namespace {

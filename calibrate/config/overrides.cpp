@@ -2,7 +2,7 @@
 
 #include <sstream>
 
-#include "calibrate/cli/errors.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 namespace {

@@ -15,7 +15,7 @@
 #include <Eigen/Core>
 #include <toml.hpp>
 
-#include "calibrate/cli/errors.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 

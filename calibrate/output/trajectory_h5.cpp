@@ -6,8 +6,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "calibrate/cli/errors.hpp"
-#include "calibrate/io/atomic_file.hpp"
+#include "store/atomic_file.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 namespace {

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "calibrate/store/hdf5_handle.hpp"
 #include "solver/sim/simulation.hpp"
+#include "store/hdf5_handle.hpp"
 
 namespace seedcal {
 

@@ -1,7 +1,7 @@
 // `kind = "bulk_density"`: schema in docs/scenes/bulk_density.md.
-#include "calibrate/io/atomic_file.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/bulk_density.hpp"
+#include "store/atomic_file.hpp"
 
 namespace seedcal {
 

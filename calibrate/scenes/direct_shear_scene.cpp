@@ -4,9 +4,9 @@
 #include <string>
 #include <sstream>
 
-#include "calibrate/io/atomic_file.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/direct_shear.hpp"
+#include "store/atomic_file.hpp"
 
 namespace seedcal {
 

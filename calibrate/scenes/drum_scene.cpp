@@ -1,9 +1,9 @@
 // `kind = "drum"`: schema in docs/scenes/drum.md.
 #include <sstream>
 
-#include "calibrate/io/atomic_file.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/drum.hpp"
+#include "store/atomic_file.hpp"
 
 namespace seedcal {
 

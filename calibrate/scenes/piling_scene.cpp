@@ -2,9 +2,9 @@
 #include <numbers>
 #include <sstream>
 
-#include "calibrate/io/atomic_file.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/piling.hpp"
+#include "store/atomic_file.hpp"
 
 namespace seedcal {
 

@@ -2,10 +2,10 @@
 
 #include <filesystem>
 
-#include "calibrate/cli/errors.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "solver/core/errors.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 

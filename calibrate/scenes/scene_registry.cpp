@@ -11,10 +11,10 @@
 
 #include <gsl/gsl_statistics_double.h>
 
-#include "calibrate/cli/version_string.hpp"
 #include "calibrate/config/output_config.hpp"
 #include "calibrate/output/trajectory_h5.hpp"
 #include "calibrate/scenes/job_pool.hpp"
+#include "store/version.hpp"
 
 namespace seedcal {
 

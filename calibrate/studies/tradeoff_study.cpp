@@ -6,9 +6,9 @@
 #include <limits>
 #include <sstream>
 
-#include "calibrate/cli/errors.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "calibrate/studies/study_stats.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 namespace {

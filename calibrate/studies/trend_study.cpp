@@ -8,10 +8,10 @@
 #include <limits>
 #include <sstream>
 
-#include "calibrate/cli/errors.hpp"
 #include "calibrate/scenes/job_pool.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "calibrate/studies/study_stats.hpp"
+#include "store/errors.hpp"
 
 namespace seedcal {
 namespace {

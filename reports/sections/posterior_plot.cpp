@@ -1,4 +1,4 @@
-// The posterior of two calibrated parameters (/stages/posterior, calibrate/study/posterior_stage.cpp):
+// The posterior of two calibrated parameters (/stages/posterior, calibrate/pipeline/posterior_stage.cpp):
 // its density over the surrogate box as a map, the 95 % highest-density region's edge (the band
 // around the solution curve of a single target), the traced solution curve of the last solve round,
 // the chosen point and each parameter's 95 % credible interval.

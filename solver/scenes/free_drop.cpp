@@ -4,6 +4,7 @@
 #include <chrono>
 #include <limits>
 
+#include "solver/core/random_rotation.hpp"
 #include "solver/walls/wall.hpp"
 
 namespace seedcal {

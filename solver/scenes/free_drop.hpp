@@ -39,10 +39,5 @@ struct FreeDropResult {
 
 FreeDropResult run_free_drop(const FreeDropSpec& spec);
 
-// Uniformly distributed random rotation (Shoemake 1992, "Uniform random rotations"), from
-// portable uniforms (core/portable_random.hpp): the same rotation for a seed on any library.
-inline Quat uniform_random_rotation(std::mt19937_64& rng);
-
 }  // namespace seedcal
 
-#include "solver/scenes/free_drop_impl.hpp"

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "solver/scenes/free_drop.hpp"  // uniform_random_rotation
+#include "solver/core/random_rotation.hpp"
 #include "solver/sim/memory_estimate.hpp"
 #include "solver/walls/wall_contact_list.hpp"
 

@@ -14,7 +14,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "calibrate/store/study_store.hpp"
+#include "store/study_store.hpp"
 #include "tests/support/cli.hpp"
 
 namespace seedcal::testing {

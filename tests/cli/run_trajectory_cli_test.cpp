@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <regex>
 
-#include "calibrate/store/hdf5_handle.hpp"
+#include "store/hdf5_handle.hpp"
 #include "tests/support/cli.hpp"
 
 namespace seedcal {

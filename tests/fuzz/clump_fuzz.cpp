@@ -2,8 +2,8 @@
 // A bad file must end in an InputError; an accepted one has finite spheres with positive radii.
 #include <cmath>
 
-#include "calibrate/cli/errors.hpp"
 #include "calibrate/clumps/clump_file.hpp"
+#include "store/errors.hpp"
 #include "tests/fuzz/file_fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

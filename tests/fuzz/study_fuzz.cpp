@@ -1,7 +1,7 @@
 // libFuzzer target: the study-file loader (TOML parser, typed reader, every range check). A bad
 // file must end in an InputError that names it; anything else is a finding.
-#include "calibrate/cli/errors.hpp"
-#include "calibrate/study/study_config.hpp"
+#include "calibrate/pipeline/study_config.hpp"
+#include "store/errors.hpp"
 #include "tests/fuzz/file_fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,0 +1,82 @@
+#pragma once
+// The calibration pipeline (DESIGN.md, "Calibration pipeline"; docs/calibrate.md): screen ->
+// steepest ascent -> surrogate -> solve -> confirm (with infill). Each stage reads what the ones
+// before it decided from PipelineState, plans its DEM runs through the StudyEvaluator (which
+// answers finished runs from the store), and records its design and fits in the store.
+#include <algorithm>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include "calibrate/pipeline/study_evaluator.hpp"
+
+namespace seedcal {
+
+struct PipelineState {
+  std::vector<int> kept;            // study parameter indices the later stages vary
+  Eigen::VectorXd nominal;          // natural values of every parameter (held when not kept)
+  Eigen::VectorXd first_order;      // screening: coded first-order coefficients of the kept factors
+  double screen_mean = 0.0;         // screening: mean response of the primary target
+  // Per target: lower 95 % bound of the run-to-run noise variance the screening measured (0 when
+  // it had no error estimate, e.g. a deterministic scene); floors the GP's noise.
+  std::vector<double> run_noise_var_floor;
+  // The surrogate box in natural units, one row per kept factor.
+  Eigen::VectorXd box_lo, box_hi;
+  std::string surrogate_kind;       // per primary target: "quadratic" or "gp"
+  Eigen::VectorXd chosen;           // natural, every parameter
+  nlohmann::json solution;          // the solve stage's report
+  nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
+  nlohmann::json posterior;         // after confirmation: intervals and identification (posterior_stage.cpp)
+  bool converged = false;
+  int rounds = 0;
+  int calibration_runs = -1;        // DEM runs of stages 1-5 (set when confirmation ends)
+  nlohmann::json verification;      // stage 6: the chosen model's tests
+  nlohmann::json selection;         // stage 7: every model, the Pareto front and the choice
+
+  bool is_kept(int parameter) const { return std::find(kept.begin(), kept.end(), parameter) != kept.end(); }
+};
+
+// Index of the target that drives the one-target stages (ascent): the largest weight, first wins.
+int primary_target(const StudyConfig& s);
+
+// Natural value of every parameter from the kept factors' values (others at nominal).
+Eigen::VectorXd full_point(const PipelineState& st, const Eigen::VectorXd& kept_values);
+
+// Mean response per target at each requested point: runs is requests in plan order (targets
+// inside replicates, as StudyEvaluator::plan makes them); NaN where every replicate failed.
+Eigen::MatrixXd mean_responses(const StudyConfig& s, const std::vector<EvaluationRecord>& records, int points,
+                               int replicates);
+
+// The response-surface design (coded -1 .. 1) for k kept factors: five levels for one, a
+// face-centred CCD for two (or when the study asks for "ccd"), Box-Behnken for 3 to 7; `name`
+// (optional) receives the design's name.
+Eigen::MatrixXd surrogate_design(const StudyConfig& s, int k, std::string* name = nullptr);
+
+nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+nlohmann::json run_surrogate_design(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// Every finished run of `target` on the kept subspace (held parameters at nominal) inside the
+// surrogate box, in box-coded units (-1 .. 1 per kept factor).
+void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, int target, Eigen::MatrixXd* U,
+                           Eigen::VectorXd* y);
+// Natural values of the kept factors at box-coded u.
+Eigen::VectorXd box_point(const PipelineState& st, const Eigen::VectorXd& u);
+// Fits the surrogates to every record on the kept subspace and solves for the target(s).
+nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& label);
+// Confirms at st.chosen; while not converged and the budget allows, adds infill points and
+// re-solves.
+nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// After confirmation: the posterior of the kept parameters over the surrogate box, their 95 %
+// credible intervals and whether each is identified (posterior_stage.cpp; docs/calibrate.md).
+nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
+// the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
+// All runs form one batch in model order; whenever the first k < models models have every run,
+// st holds the partial selection over them and `on_model_done` (if set) is called with k.
+nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir,
+                                const std::function<void(int models_done)>& on_model_done = {});
+
+}  // namespace seedcal

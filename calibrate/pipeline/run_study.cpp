@@ -1,0 +1,247 @@
+#include "calibrate/pipeline/run_study.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <iostream>
+#include <unistd.h>
+
+#include "calibrate/pipeline/pipeline.hpp"
+#include "calibrate/pipeline/scene_check.hpp"
+#include "store/atomic_file.hpp"
+#include "store/errors.hpp"
+#include "store/study_lock.hpp"
+#include "store/version.hpp"
+
+namespace seedcal {
+namespace {
+
+StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std::string& hash) {
+  const std::string path = o.out_dir + "/study.h5";
+  if (std::filesystem::exists(path)) {
+    if (!o.resume)
+      throw InputError(path + ": a study is already stored here; continue it with --resume, or choose another --out");
+    StudyStore store = StudyStore::open(path);
+    // A store from a build that named the study's files as the command line spelt them.
+    if (store.header().config_hash != hash && store.header().config_hash == study_fingerprint_as_spelt(s))
+      store.set_config_hash(hash);
+    if (store.header().config_hash != hash)
+      throw InputError(path + ": this study directory was made from a different study (fingerprint " +
+                       store.header().config_hash + ", now " + hash + "): the study file " + o.study_file +
+                       ", its overrides or a scene or clump file it names changed since. Resume with the "
+                       "unchanged files, or start the changed study in another --out directory");
+    return store;
+  }
+  StudyHeader h{hash, s.text, version_string(), utc_now()};
+  return StudyStore::create(path, h);
+}
+
+nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const StudyEvaluator& ev,
+                          const StudyStore& store, const std::string& stage_reached, const std::string& hash) {
+  nlohmann::json j;
+  j["study"] = s.name;
+  j["stage_reached"] = stage_reached;
+  nlohmann::json calibrated = nlohmann::json::object(), held = nlohmann::json::object();
+  if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
+    for (std::size_t p = 0; p < s.parameters.size(); ++p) {
+      (st.is_kept(static_cast<int>(p)) ? calibrated : held)[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
+    }
+  }
+  j["calibrated"] = calibrated;
+  j["held_at_nominal"] = held;
+  nlohmann::json targets = nlohmann::json::object();
+  for (const auto& t : s.targets) targets[t.metric] = t.value;
+  j["targets"] = targets;
+  j["confirmed"] = st.confirmed.is_null() ? nlohmann::json::object() : st.confirmed;
+  j["converged"] = st.converged;
+  j["confirmation_rounds"] = st.rounds;
+  // Calibration runs (stages 1-5: what the classical workflow's count compares with); the
+  // verification runs come on top.
+  j["evaluations"] = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
+  j["evaluations_total"] = ev.runs_used();
+  j["evaluations_from_store"] = ev.runs_reused();
+  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations; every point runs every
+  // target's test (a joint study of two tests runs both at each point).
+  j["classical_workflow_evaluations"] = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
+  j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
+  // The posterior (posterior_stage.cpp): 95 % credible intervals and identification, with reasons.
+  const bool has_posterior = st.posterior.is_object();
+  j["calibrated_interval"] = has_posterior ? st.posterior.value("calibrated_interval", nlohmann::json::object())
+                                           : nlohmann::json::object();
+  j["identified"] = has_posterior ? st.posterior.value("identified", nlohmann::json::object()) : nlohmann::json::object();
+  if (has_posterior) {
+    nlohmann::json d = st.posterior;
+    d.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
+    j["posterior"] = d;
+  }
+  j["tolerance"] = s.confirm.tolerance;
+  if (!st.verification.is_null()) j["verification"] = st.verification;
+  if (!st.selection.is_null()) j["model_selection"] = st.selection;
+  // A digest of the stages (the full designs and fits are in study.h5, /stages).
+  const auto& stages = store.stages();
+  nlohmann::json digest = nlohmann::json::object();
+  if (stages.contains("screen")) {
+    nlohmann::json sc = {{"kept", stages["screen"]["kept"]}, {"effects", nlohmann::json::object()}};
+    for (const auto& t : stages["screen"]["targets"]) {
+      sc["effects"][t.value("name", "")] = t.value("effects", nlohmann::json::array());
+      if (t.contains("run_noise_sd"))
+        sc["run_noise_sd"][t.value("name", "")] = {{"estimate", t["run_noise_sd"]}, {"lower95", t["run_noise_sd_lower95"]}};
+    }
+    digest["screen"] = sc;
+  }
+  if (stages.contains("ascent"))
+    digest["ascent"] = {{"result", stages["ascent"].value("stop_reason", stages["ascent"].value("skipped", std::string()))},
+                        {"points", stages["ascent"]["points"].size()},
+                        {"surrogate_box", stages["ascent"]["surrogate_box"]}};
+  for (int round = 100; round >= 1; --round) {
+    const std::string key = "solve_round_" + std::to_string(round);
+    if (!stages.contains(key)) continue;
+    nlohmann::json fits = nlohmann::json::object();
+    for (const auto& t : stages[key]["targets"]) {
+      nlohmann::json f = {{"chosen", t.value("chosen", std::string())}, {"points", t.value("points", 0)}};
+      if (t.contains("quadratic") && t["quadratic"].contains("loo_rmse")) f["quadratic_loo_rmse"] = t["quadratic"]["loo_rmse"];
+      if (t.contains("gp") && t["gp"].contains("loo_rmse")) f["gp_loo_rmse"] = t["gp"]["loo_rmse"];
+      if (t.contains("gp") && t["gp"].contains("noise_sd")) f["gp_noise_sd"] = t["gp"]["noise_sd"];
+      if (t.contains("gp") && t["gp"].contains("noise_floor_sd")) f["gp_noise_floor_sd"] = t["gp"]["noise_floor_sd"];
+      fits[t.value("name", "")] = f;
+    }
+    digest["surrogate"] = {{"round", round}, {"fits", fits}};
+    break;
+  }
+  if (stages.contains("confirm")) {
+    digest["confirm_stop_reason"] = stages["confirm"].value("stop_reason", std::string("running"));
+    // Per round: where, how many replicates the pooled result rests on, and what came next.
+    nlohmann::json rounds = nlohmann::json::array();
+    const nlohmann::json& confirm = stages["confirm"];
+    if (confirm.contains("rounds")) {
+      for (const nlohmann::json& r : confirm["rounds"]) {
+        nlohmann::json d = nlohmann::json::object();
+        for (const char* k : {"round", "point", "runs_at_point", "next"})
+          if (r.contains(k)) d[k] = r[k];
+        d["infill_points"] = r.contains("infill_points") ? r["infill_points"].size() : 0;
+        if (r.contains("targets")) {
+          for (const auto& item : r["targets"].items()) {
+            nlohmann::json m = nlohmann::json::object();
+            for (const char* k : {"n", "mean", "sd", "rel_error", "rel_error_ci", "significant_miss"})
+              if (item.value().contains(k)) m[k] = item.value()[k];
+            d["targets"][item.key()] = m;
+          }
+        }
+        rounds.push_back(d);
+      }
+    }
+    digest["confirm_rounds"] = rounds;
+  }
+  j["stages"] = digest;
+  const double cpu = ev.calibration_cpu_seconds(), cpu_verify = ev.verification_cpu_seconds();
+  j["cpu_seconds"] = cpu + cpu_verify;
+  j["calibration_cpu_seconds"] = cpu;
+  j["verification_cpu_seconds"] = cpu_verify;
+  double wall = 0.0;
+  if (store.stages().contains("sessions"))
+    for (const auto& x : store.stages()["sessions"]) wall += x.value("wall_seconds", 0.0);
+  j["wall_seconds"] = wall;
+  j["provenance"] = {{"seedcal_version", version_string()}, {"study_file", s.file}, {"seed", s.seed},
+                     {"config_hash", hash}, {"config", s.text}};
+  return j;
+}
+
+// The report (reports/, docs/reports.md), when the caller renders one: study.h5 and summary.json
+// as report.html, report.md and report/*.csv|svg. A report that cannot be written is logged and
+// does not fail the study (`seedcal report DIR` renders it again).
+void write_study_report(const StudyRunOptions& o, Progress& progress) {
+  if (!o.render_report) return;
+  try {
+    o.render_report(o.out_dir);
+    progress.log("report: " + o.out_dir + "/report.html");
+  } catch (const std::exception& e) {
+    progress.log(std::string("report not written (seedcal report ") + o.out_dir + " renders it again): " + e.what());
+  }
+}
+
+}  // namespace
+
+nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_executor) {
+  const StudyConfig s = read_study(o.study_file, o.sets);
+  // Bad input is refused before any run (exit 2); warnings are said now and logged below.
+  const std::vector<std::string> warnings = check_study_scenes(s);
+  for (const std::string& w : warnings) std::cerr << "seedcal: warning: " << w << "\n";
+  const std::string hash = study_fingerprint(s);
+  const std::unique_ptr<Executor> executor = make_executor(hash);
+  std::filesystem::create_directories(o.out_dir);
+  // One calibrate at a time on a study directory (store/study_lock.hpp): taken before the store is
+  // read, held until the summary is written.
+  std::vector<std::string> lock_warnings;
+  const StudyLock lock(o.out_dir, o.force_unlock, lock_warnings);
+  for (const std::string& w : lock_warnings) std::cerr << "seedcal: warning: " << w << "\n";
+  StudyStore store = open_store(o, s, hash);
+  Progress progress(o.out_dir + "/calibrate.log", o.progress_on_terminal && ::isatty(STDERR_FILENO), executor->slots());
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json sessions = store.stages().value("sessions", nlohmann::json::array());
+  const std::size_t session = sessions.size();
+  sessions.push_back({{"started_utc", utc_now()}, {"wall_seconds", 0.0}, {"executor", executor->describe()},
+                      {"threads_per_simulation", o.threads}, {"seedcal_version", version_string()}});
+  store.set_stage("sessions", sessions);
+  progress.log("study " + s.name + " (" + s.file + "), fingerprint " + hash + ", " + executor->describe() +
+               (store.evaluations().empty() ? "" : ", resuming with " + std::to_string(store.evaluations().size()) + " stored runs"));
+
+  for (const std::string& w : warnings) progress.log("warning: " + w);
+  StudyEvaluator ev(s, store, *executor, progress);
+  PipelineState st;
+  auto checkpoint = [&](const std::string& stage) {
+    sessions[session]["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    store.set_stage("sessions", sessions);
+    const nlohmann::json j = summary_of(s, st, ev, store, stage, hash);
+    write_json_atomic(o.out_dir + "/summary.json", j);
+    return j;
+  };
+  const int plan_screen = s.screen.runs * s.screen.replicates * static_cast<int>(s.targets.size());
+  progress.stage("screen", plan_screen);
+  const auto screen = run_screening(ev, st, store);
+  std::string kept;
+  for (const auto& k : screen["kept"]) kept += (kept.empty() ? "" : ", ") + k.get<std::string>();
+  progress.log("screen: kept " + kept);
+  checkpoint("screen");
+
+  progress.stage("ascent", s.ascent.max_steps * s.screen.replicates * static_cast<int>(s.targets.size()));
+  const auto ascent = run_ascent(ev, st, store);
+  progress.log("ascent: " + ascent.value("stop_reason", ascent.value("skipped", std::string())));
+  checkpoint("ascent");
+
+  const auto design_runs = static_cast<int>(surrogate_design(s, static_cast<int>(st.kept.size())).rows());
+  progress.stage("surrogate", design_runs * s.surrogate.replicates * static_cast<int>(s.targets.size()));
+  run_surrogate_design(ev, st, store);
+  const auto solved = fit_and_solve(ev, st, store, "solve_round_1");
+  progress.log("surrogate: " + st.surrogate_kind + ", chosen " + solved["solution"]["chosen"].dump());
+  checkpoint("solve");
+
+  const auto confirm = run_confirmation(ev, st, store);
+  progress.log("confirm: " + confirm.value("stop_reason", std::string()) + ", " + std::to_string(ev.runs_used()) +
+               " DEM runs");
+  st.calibration_runs = ev.runs_used();
+  const auto post = run_posterior(ev, st, store);
+  if (post.contains("identified")) {
+    std::string line;
+    for (const auto& [path, ok] : post["identified"].items())
+      line += (line.empty() ? "" : ", ") + path + (ok.get<bool>() ? " identified" : " not identified");
+    progress.log("posterior: " + line);
+  }
+  checkpoint("confirm");
+
+  // Verification and model selection run only when the study asks for them (tests or models).
+  if (!s.checks.empty() || s.models.size() > 1) {
+    const auto selection = run_verification(ev, st, store, o.out_dir, [&](int done) {
+      progress.log("verify: " + std::to_string(done) + " of " + std::to_string(s.models.size()) +
+                   " models verified, provisional choice " + st.selection["chosen"].dump());
+      checkpoint("verify");
+      write_study_report(o, progress);
+    });
+    progress.log("verify: chosen model " + selection["chosen"].dump() + ", " + std::to_string(ev.runs_used()) +
+                 " DEM runs in all");
+  }
+  const nlohmann::json summary = checkpoint("done");
+  write_study_report(o, progress);
+  return summary;
+}
+
+}  // namespace seedcal
