@@ -1,4 +1,5 @@
 // `kind = "bulk_density"`: schema in docs/scenes/bulk_density.md.
+#include "calibrate/scenes/rig_checks.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/bulk_density.hpp"
 #include "store/atomic_file.hpp"
@@ -11,6 +12,8 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
   fill_seed_spec(spec, cfg, ctx);
   if (auto rig = rig_table(root, "bulk_density", cfg.fidelity)) {
     spec.container_m = rig->vec3("container_m", Range::closed(0.005, 10.0), true).value_or(spec.container_m);
+    warn_if_small_rig(*rig, "container_m", "the container's smallest side", spec.container_m.minCoeff(), spec.seeds,
+                      kBulkContainer);
     spec.wall_material = cfg.phys.material(*rig, "wall_material", rig->string("wall_material"));
     cfg.require_wall_interaction(*rig, "wall_material", spec.wall_material, "the seeds touch the container");
     spec.collar_fraction = rig->number("collar_fraction", Range::closed(0.0, 5.0), 0.6);

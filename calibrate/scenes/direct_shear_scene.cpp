@@ -4,6 +4,7 @@
 #include <string>
 #include <sstream>
 
+#include "calibrate/scenes/rig_checks.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/direct_shear.hpp"
 #include "store/atomic_file.hpp"
@@ -42,6 +43,9 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
                  "= " + std::to_string(spec.ring_wall_thickness_m) + " must exceed shear_displacement_m (" +
                      std::to_string(spec.shear_displacement_m) +
                      "): the rings' faces cover the gap the upper ring opens only while the ring is wider than its travel");
+    warn_if_small_rig(*rig, "diameter_m", "the box's diameter", spec.diameter_m, spec.seeds, kShearBoxDiameter);
+    warn_if_small_rig(*rig, "sample_height_m", "the sample's height", spec.sample_height_m, spec.seeds,
+                      kShearSampleHeight);
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();

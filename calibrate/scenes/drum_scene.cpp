@@ -1,6 +1,7 @@
 // `kind = "drum"`: schema in docs/scenes/drum.md.
 #include <sstream>
 
+#include "calibrate/scenes/rig_checks.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/drum.hpp"
 #include "store/atomic_file.hpp"
@@ -27,6 +28,10 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
     if (spec.shell_facets == 1 || spec.shell_facets == 2)
       rig->error("shell_facets", "is " + std::to_string(spec.shell_facets) +
                                      "; allowed: 0 (a smooth shell) or 3 to 720 facets");
+    warn_if_small_rig(*rig, "filling_rate", "the bed's depth at the drum's centre line",
+                      drum_fill_height(0.5 * spec.diameter_m, spec.filling_rate), spec.seeds, kDrumBed,
+                      "raise the filling rate or the drum's diameter");
+    warn_if_small_rig(*rig, "depth_m", "the drum's depth", spec.depth_m, spec.seeds, kDrumDepth);
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();

@@ -2,6 +2,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "calibrate/scenes/rig_checks.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/piling.hpp"
 #include "store/atomic_file.hpp"
@@ -18,6 +19,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
     cfg.require_wall_interaction(*rig, "plate_material", spec.plate_material, "the seeds pile on the plate");
     cfg.require_wall_interaction(*rig, "tube_material", spec.tube_material, "the seeds fill the tube");
     spec.tube_diameter_m = rig->number("tube_diameter_m", Range::closed(0.005, 5.0), spec.tube_diameter_m);
+    warn_if_small_rig(*rig, "tube_diameter_m", "the tube's diameter", spec.tube_diameter_m, spec.seeds, kPilingTube);
     spec.fill_height_m = rig->number("fill_height_m", Range::closed(0.005, 5.0), spec.fill_height_m);
     spec.lift_speed_m_s = rig->number("lift_speed_m_s", Range::closed(1e-5, 10.0), spec.lift_speed_m_s);
     spec.azimuths = static_cast<int>(rig->integer("azimuths", 2, 72, spec.azimuths));
