@@ -11,7 +11,10 @@
 // i.e. its excess error lies within the practical margin plus what the scatter allows. A model
 // whose s is unknown (single runs with no pooled scatter) cannot be shown worse than b beyond
 // the margin and counts as tied when within the margin only. The chosen model is the cheapest
-// tied one. To separate the cheapest tied model from b, each model's replicates would have to
+// tied one that saves at least `cost_margin` of b's cost, c_m <= (1 - cost_margin) c_b, and b when
+// none does: a model's CPU seconds come from single runs whose settling phases end at a criterion,
+// on a machine other work shares, so a difference of a few percent is no reason to give up
+// accuracy. To separate the cheapest tied model from b, each model's replicates would have to
 // grow by the factor (z sqrt(s_m^2 + s_b^2) / (E_m - E_b - margin))^2 (the standard errors fall as
 // 1/sqrt(n)); none when E_m - E_b <= margin (no replicate count can separate them).
 #include <cstddef>
@@ -37,6 +40,7 @@ struct ModelChoice {
 };
 
 // z: one-sided normal quantile of the comparison (1.645: 95 %).
-ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, double z = 1.6448536);
+ModelChoice choose_model(const std::vector<ModelScore>& models, double margin, double cost_margin = 0.1,
+                         double z = 1.6448536);
 
 }  // namespace seedcal

@@ -43,6 +43,23 @@ TEST(ModelChoice, DeterministicScenesFallBackToTheMargin) {
   EXPECT_LT(c.replicates_factor, 0.0);
 }
 
+// The main job's seed 2 (docs/results/calibration.md): manual-9 15.21 % (se 4.06), manual-7
+// 23.48 % (se 1.92), tied by the scatter, manual-7 cheaper by 370 -> 367 CPU s. A 1 % saving lies
+// within the single runs' timing scatter: the most accurate is kept unless the saving reaches the
+// cost margin (10 % by default).
+TEST(ModelChoice, ATiedModelMustSaveTheCostMarginToBeChosen) {
+  const std::vector<ModelScore> m = {{0.1521, 0.0406, 370.0}, {0.2348, 0.0192, 367.0}};
+  const ModelChoice c = choose_model(m, 0.02);
+  EXPECT_TRUE(c.tied[1]);
+  EXPECT_EQ(c.chosen, 0);
+  EXPECT_NE(c.comparison.find("under the cost margin of 10 %"), std::string::npos) << c.comparison;
+  // Cheaper by 20 %: chosen.
+  const std::vector<ModelScore> cheap = {{0.1521, 0.0406, 370.0}, {0.2348, 0.0192, 296.0}};
+  EXPECT_EQ(choose_model(cheap, 0.02).chosen, 1);
+  // No cost margin: the old rule, the cheapest tied model whatever it saves.
+  EXPECT_EQ(choose_model(m, 0.02, 0.0).chosen, 1);
+}
+
 TEST(ModelChoice, UnknownScatterTiesOnlyWithinTheMargin) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<ModelScore> m = {{0.01, nan, 500.0}, {0.10, nan, 100.0}};

@@ -180,6 +180,7 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
   if (auto t = root.table("verify")) {
     s.verify.replicates = static_cast<int>(t->integer("replicates", 1, 50, s.verify.replicates));
     s.verify.error_margin = t->number("error_margin", Range::closed(0.0, 1.0), s.verify.error_margin);
+    s.verify.cost_margin = t->number("cost_margin", Range::closed(0.0, 0.9), s.verify.cost_margin);
     for (auto& c : t->table_array("test")) read_check(c, s);
     t->check_unknown_keys();
   }

@@ -38,6 +38,7 @@ struct StudyModel {
 struct VerifySettings {
   int replicates = 2;            // DEM runs per verification test and model (fresh seeds)
   double error_margin = 0.02;    // selection: cheapest model within this of the lowest mean |error|
+  double cost_margin = 0.10;     // ... when it saves at least this fraction of the best's CPU time
 };
 
 struct StudyParameter {

@@ -197,7 +197,7 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
     scores[static_cast<std::size_t>(m)] = {error[static_cast<std::size_t>(m)], se, cost[static_cast<std::size_t>(m)]};
     rows[static_cast<std::size_t>(m)]["mean_abs_rel_error_se"] = null_if_nan(se);
   }
-  const ModelChoice choice = choose_model(scores, s.verify.error_margin);
+  const ModelChoice choice = choose_model(scores, s.verify.error_margin, s.verify.cost_margin);
   const int chosen = choice.chosen;
   const double best = choice.best >= 0 ? error[static_cast<std::size_t>(choice.best)] : 0.0;
   nlohmann::json ties = nlohmann::json::array();
@@ -213,13 +213,14 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
     rows[i]["tied_with_best"] = static_cast<bool>(choice.tied[i]);
     if (choice.tied[i]) ties.push_back(s.models[i].name);
   }
-  char rule[400];
+  char rule[520];
   std::snprintf(rule, sizeof rule,
                 "error = mean |relative error| over the tests with an experimental value, with its standard error from "
                 "the replicates; cost = CPU seconds of one run of every test; chosen: the cheapest model whose error "
-                "exceeds the lowest (%.4g) by no more than %.3g plus 1.645 standard errors of the difference",
-                best, s.verify.error_margin);
-  nlohmann::json selection = {{"rule", rule}, {"error_margin", s.verify.error_margin}, {"models", rows},
+                "exceeds the lowest (%.4g) by no more than %.3g plus 1.645 standard errors of the difference, "
+                "when it saves at least %.3g of the most accurate model's cost (else the most accurate)",
+                best, s.verify.error_margin, s.verify.cost_margin);
+  nlohmann::json selection = {{"rule", rule}, {"error_margin", s.verify.error_margin}, {"cost_margin", s.verify.cost_margin}, {"models", rows},
                               {"chosen", chosen >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(chosen)].name)
                                                      : nlohmann::json(nullptr)},
                               {"most_accurate", choice.best >= 0 ? nlohmann::json(s.models[static_cast<std::size_t>(choice.best)].name)
