@@ -35,6 +35,7 @@ WorkerCommand worker_command(const StudyRunOptions& o) {
 }
 
 void calibrate(CalibrateArgs& a, const GlobalOptions& g) {
+  refuse_tasks_without_mpi("seedcal calibrate");  // srun without MPI would run the study once per task
   StudyRunOptions o = a.run;
   o.threads = g.threads > 0 ? g.threads : (MpiSession::size() > 1 ? 1 : std::max(1, g.resolved_threads() / o.jobs));
   if (g.seed_given) o.sets.push_back("seed=" + std::to_string(g.seed));

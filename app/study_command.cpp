@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "app/commands.hpp"
+#include "app/executors/mpi_executor.hpp"
 #include "calibrate/studies/paper_studies.hpp"
 #include "calibrate/studies/tradeoff_study.hpp"
 #include "calibrate/studies/trend_study.hpp"
@@ -57,6 +58,7 @@ void check_file(const std::string& option, const std::string& path) {
 
 // Options every DEM study shares, resolved when its command runs.
 void prepare(StudyArgs& a, const GlobalOptions& g) {
+  refuse_several_tasks("seedcal study");
   a.o.threads = g.resolved_threads();
   a.o.seed = g.seed;
   a.o.out_dir = a.out;
@@ -125,6 +127,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
       ->check(CLI::Range(1, 1000))->capture_default_str();
   add_common_options(*tr, g);
   tr->callback([t, &g] {
+    refuse_several_tasks("seedcal study");  // several tasks would each run it whole
     t->o.threads = g.threads_per_job(t->o.jobs);
     t->o.seed = g.seed;
     t->o.out_dir = t->out;
@@ -151,6 +154,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
       ->check(CLI::Range(1, 1000))->capture_default_str();
   add_common_options(*te, g);
   te->callback([tn, &g] {
+    refuse_several_tasks("seedcal study");  // several tasks would each run it whole
     tn->o.threads = g.threads_per_job(tn->o.jobs);
     tn->o.seed = g.seed;
     tn->o.out_dir = tn->out;

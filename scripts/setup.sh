@@ -12,7 +12,7 @@ if [ "${1:-}" = "--preset" ]; then preset="$2"; fi
 packages=(build-essential cmake ninja-build pkg-config
           libeigen3-dev libnlopt-cxx-dev libgsl-dev libhdf5-dev libtoml11-dev libcli11-dev
           nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev gnuplot-nox
-          libopenmpi-dev openmpi-bin python3)
+          libopenmpi-dev openmpi-bin python3 python3-h5py python3-pandas)
 ensure_packages "${packages[@]}"
 
 cmake --preset "$preset" >/dev/null

@@ -5,6 +5,9 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <limits>
+#include <map>
+#include <set>
 #include <unistd.h>
 
 #include "store/atomic_file.hpp"
@@ -14,8 +17,6 @@
 namespace seedcal {
 
 namespace {
-
-constexpr int kFormatVersion = 1;
 
 // ---- small HDF5 helpers ---------------------------------------------------------------------
 
@@ -42,6 +43,128 @@ std::vector<T> read_numbers(hid_t group, const char* name, hid_t mem_type) {
   std::vector<T> out(n);
   if (n > 0) h5::check(H5Dread(set, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), std::string("read ") + name);
   return out;
+}
+
+void write_int_attr(hid_t obj, const char* name, long long value) {
+  h5::Handle space(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar space");
+  h5::Handle attr(H5Acreate2(obj, name, H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                  std::string("create attribute ") + name);
+  h5::check(H5Awrite(attr, H5T_NATIVE_LLONG, &value), std::string("write attribute ") + name);
+}
+
+// An integer attribute, or `absent` when the object has none of that name.
+long long read_int_attr(hid_t obj, const char* name, long long absent) {
+  const htri_t exists = H5Aexists(obj, name);
+  h5::check(exists, std::string("look for attribute ") + name);
+  if (exists == 0) return absent;
+  h5::Handle attr(H5Aopen(obj, name, H5P_DEFAULT), H5Aclose, std::string("open attribute ") + name);
+  long long value = 0;
+  h5::check(H5Aread(attr, H5T_NATIVE_LLONG, &value), std::string("read attribute ") + name);
+  return value;
+}
+
+// ---- the numeric tables (/tables, schema 2; docs/store.md) -----------------------------------
+
+// A link name from a target name or a key: '/' would open a subgroup and "." names the group
+// itself.
+std::string link_name(std::string s, const std::string& fallback) {
+  for (char& c : s)
+    if (c == '/') c = '_';
+  return s.empty() || s == "." ? fallback : s;
+}
+
+// The target a record belongs to, from the tags the pipeline puts in its metrics
+// (calibrate/pipeline/evaluation.cpp, request_record): the target's index `study_target` (every
+// record has it, a crashed worker's too) and its name `study_target_name`.
+std::string target_key(const EvaluationRecord& e) {
+  const auto index = e.metrics.find("study_target");
+  if (index != e.metrics.end() && index->is_number_integer()) return "#" + std::to_string(index->get<long long>());
+  const auto name = e.metrics.find("study_target_name");
+  return name != e.metrics.end() && name->is_string() ? "=" + name->get<std::string>() : std::string();
+}
+
+// A table's target name: the first name among its records, else one made from the key.
+std::string target_name(const std::string& key, const std::vector<const EvaluationRecord*>& rows) {
+  for (const EvaluationRecord* e : rows) {
+    const auto name = e->metrics.find("study_target_name");
+    if (name != e->metrics.end() && name->is_string()) return name->get<std::string>();
+  }
+  return key.empty() ? std::string() : key[0] == '#' ? "target_" + key.substr(1) : key.substr(1);
+}
+
+// A JSON scalar as a table value: numbers as they are, true/false as 1/0; false for anything else.
+bool numeric(const nlohmann::json& v, double& out) {
+  if (v.is_number()) out = v.get<double>();
+  else if (v.is_boolean()) out = v.get<bool>() ? 1.0 : 0.0;
+  else return false;
+  return true;
+}
+
+// One column per key that has a number in some row, NaN in the rows without one.
+using Columns = std::map<std::string, std::vector<double>>;
+void add_numbers(Columns& columns, const nlohmann::json& object, std::size_t row, std::size_t rows) {
+  if (!object.is_object()) return;
+  for (const auto& [key, value] : object.items()) {
+    double x = 0.0;
+    if (!numeric(value, x)) continue;
+    auto [it, fresh] = columns.try_emplace(link_name(key, "_"));
+    if (fresh) it->second.assign(rows, std::numeric_limits<double>::quiet_NaN());
+    it->second[row] = x;
+  }
+}
+
+void write_columns(hid_t parent, const char* name, const Columns& columns) {
+  h5::Handle g(H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+               std::string("create group ") + name);
+  for (const auto& [key, values] : columns) write_numbers(g, key.c_str(), values, H5T_NATIVE_DOUBLE);
+}
+
+// /tables/<link>: one row per run of `target`, in store order.
+void write_table(hid_t tables, const std::string& link, const std::string& target,
+                 const std::vector<const EvaluationRecord*>& rows) {
+  h5::Handle g(H5Gcreate2(tables, link.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+               "create the table of target " + target);
+  write_string_attr(g, "target_name", target);
+  std::vector<std::uint64_t> ids, seeds;
+  std::vector<double> cpu, wall;
+  std::vector<std::string> stage, status, model;
+  Columns inputs, metrics;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const EvaluationRecord& e = *rows[k];
+    ids.push_back(e.id);
+    seeds.push_back(e.seed);
+    cpu.push_back(e.cpu_seconds);
+    wall.push_back(e.wall_seconds);
+    stage.push_back(e.stage);
+    status.push_back(e.status);
+    const auto m = e.metrics.find("study_model");
+    model.push_back(m != e.metrics.end() && m->is_string() ? m->get<std::string>() : std::string());
+    add_numbers(inputs, e.inputs, k, rows.size());
+    add_numbers(metrics, e.metrics, k, rows.size());
+  }
+  write_numbers(g, "id", ids, H5T_NATIVE_UINT64);
+  write_numbers(g, "seed", seeds, H5T_NATIVE_UINT64);
+  write_numbers(g, "cpu_seconds", cpu, H5T_NATIVE_DOUBLE);
+  write_numbers(g, "wall_seconds", wall, H5T_NATIVE_DOUBLE);
+  write_strings(g, "stage", stage);
+  write_strings(g, "status", status);
+  write_strings(g, "model", model);
+  write_columns(g, "inputs", inputs);
+  write_columns(g, "metrics", metrics);
+}
+
+void write_tables(hid_t file, const std::vector<EvaluationRecord>& evaluations) {
+  std::map<std::string, std::vector<const EvaluationRecord*>> by_target;
+  for (const auto& e : evaluations) by_target[target_key(e)].push_back(&e);
+  h5::Handle t(H5Gcreate2(file, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "create /tables");
+  std::set<std::string> links;  // two names that differ only in '/' get _2, _3, ... (target_name tells them apart)
+  for (const auto& [key, rows] : by_target) {
+    const std::string target = target_name(key, rows);
+    const std::string base = link_name(target, "unnamed");
+    std::string link = base;
+    for (int n = 2; !links.insert(link).second; ++n) link = base + "_" + std::to_string(n);
+    write_table(t, link, target, rows);
+  }
 }
 
 }  // namespace
@@ -102,6 +225,12 @@ StudyStore StudyStore::create(const std::string& path, const StudyHeader& header
   return s;
 }
 
+namespace {
+struct NewerSchema {
+  int version;
+};
+}  // namespace
+
 StudyStore StudyStore::open(const std::string& path) {
   if (!std::filesystem::exists(path)) throw InputError(path + ": no study store to resume");
   StudyStore s;
@@ -111,6 +240,9 @@ StudyStore StudyStore::open(const std::string& path) {
     h5::QuietErrors quiet;
     if (H5Fis_hdf5(path.c_str()) <= 0) throw std::runtime_error("not an HDF5 file");
     h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open the file");
+    // The tables (schema 2) are derived from the records, so nothing else differs on reading.
+    s.schema_version_ = static_cast<int>(read_int_attr(f, "schema_version", 1));
+    if (s.schema_version_ > kStudyStoreSchemaVersion) throw NewerSchema{s.schema_version_};
     s.header_.config_hash = read_string_attr(f, "config_hash");
     s.header_.config_text = read_string_attr(f, "config_text");
     s.header_.seedcal_version = read_string_attr(f, "seedcal_version");
@@ -142,6 +274,10 @@ StudyStore StudyStore::open(const std::string& path) {
     }
     h5::Handle st(H5Gopen2(f, "stages", H5P_DEFAULT), H5Gclose, "open /stages");
     s.stages_ = nlohmann::json::parse(read_string_attr(st, "stages_json"));
+  } catch (const NewerSchema& n) {
+    throw RunFailed(path + ": written by a newer seedcal (store schema " + std::to_string(n.version) +
+                    "; this build reads schema " + std::to_string(kStudyStoreSchemaVersion) +
+                    " and older): resume it with that version, or start the study afresh in another --out");
   } catch (const std::exception& e) {
     throw RunFailed(path + ": not a readable study store (" + e.what() +
                     "); it may be truncated or corrupted: move it away to start the study afresh");
@@ -168,7 +304,7 @@ void StudyStore::set_stage(const std::string& name, const nlohmann::json& conten
   write();
 }
 
-void StudyStore::write() const {
+void StudyStore::write() {
   namespace fs = std::filesystem;
   const fs::path target(path_);
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
@@ -177,7 +313,8 @@ void StudyStore::write() const {
     h5::QuietErrors quiet;
     h5::Handle f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
                  "create " + tmp);
-    write_string_attr(f, "format", "seedcal study store " + std::to_string(kFormatVersion));
+    write_string_attr(f, "format", "seedcal study store " + std::to_string(kStudyStoreSchemaVersion));
+    write_int_attr(f, "schema_version", kStudyStoreSchemaVersion);
     write_string_attr(f, "config_hash", header_.config_hash);
     write_string_attr(f, "config_text", header_.config_text);
     write_string_attr(f, "seedcal_version", header_.seedcal_version);
@@ -212,9 +349,12 @@ void StudyStore::write() const {
     h5::Handle st(H5Gcreate2(f, "stages", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                   "create /stages");
     write_string_attr(st, "stages_json", stages_.dump());
+    // The same runs again as numbers, one table per target, for readers that do not parse JSON.
+    write_tables(f, evaluations_);
     h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flush " + tmp);
   }
   commit_file_atomic(tmp, path_);  // fsync, rename, fsync the folder (atomic_file.hpp)
+  schema_version_ = kStudyStoreSchemaVersion;
 }
 
 }  // namespace seedcal

@@ -8,6 +8,9 @@
 // complete file, never a half-written one. A content checksum (FNV-1a 64 over the canonical JSON of
 // the records) is stored as an attribute and verified on open: a truncated or corrupted file is
 // reported, never silently reused.
+//
+// The layout (every group, dataset and attribute, with units) is docs/store.md; scripts/read_store.py
+// reads it into pandas data frames.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,6 +18,12 @@
 #include <nlohmann/json.hpp>
 
 namespace seedcal {
+
+// The layout this build writes, stored as the root attribute `schema_version` and in summary.json.
+// 1: the layout without that attribute (/evaluations, /stages); 2: adds the attribute and /tables,
+// one numeric table per target (docs/store.md). A store of any version up to this one opens and
+// resumes, and is written at this version from its next change on.
+inline constexpr int kStudyStoreSchemaVersion = 2;
 
 struct EvaluationRecord {
   std::uint64_t id = 0;
@@ -44,8 +53,8 @@ class StudyStore {
  public:
   // A new store at `path` (refuses to overwrite an existing file).
   static StudyStore create(const std::string& path, const StudyHeader& header);
-  // An existing store; throws RunFailed when the file is not a readable study store or its
-  // checksum does not match (truncated or corrupted).
+  // An existing store; throws RunFailed when the file is not a readable study store, its
+  // checksum does not match (truncated or corrupted) or its schema is newer than this build's.
   static StudyStore open(const std::string& path);
 
   void append(EvaluationRecord record);  // assigns the id if 0; written before it returns
@@ -58,16 +67,20 @@ class StudyStore {
   const std::vector<EvaluationRecord>& evaluations() const { return evaluations_; }
   const nlohmann::json& stages() const { return stages_; }
   const std::string& path() const { return path_; }
+  // The schema version of the file as read (1 for a store without the attribute); a store that
+  // has been written since has kStudyStoreSchemaVersion.
+  int schema_version() const { return schema_version_; }
   std::uint64_t next_id() const;
 
  private:
-  void write() const;
+  void write();
   std::string checksum() const;
 
   std::string path_;
   StudyHeader header_;
   std::vector<EvaluationRecord> evaluations_;
   nlohmann::json stages_ = nlohmann::json::object();
+  int schema_version_ = kStudyStoreSchemaVersion;
 };
 
 // FNV-1a 64-bit hash as 16 hex digits (config and content fingerprints).

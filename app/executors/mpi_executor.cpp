@@ -1,5 +1,6 @@
 #include "app/executors/mpi_executor.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <thread>
@@ -19,6 +20,34 @@ bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
     if (std::getenv(v)) return true;
   return false;
+}
+
+// An environment variable as a whole number, or -1 when unset or not a number.
+long env_number(const char* name) {
+  const char* v = std::getenv(name);
+  if (!v || !*v) return -1;
+  char* end = nullptr;
+  const long n = std::strtol(v, &end, 10);
+  return *end == '\0' ? n : -1;
+}
+
+// The tasks of the SLURM job step this process is one of; 0 outside a step. srun sets
+// SLURM_STEP_NUM_TASKS for the step (and SLURM_NTASKS, SLURM_PROCID, SLURM_STEP_ID); sbatch gives
+// the batch script SLURM_NTASKS and SLURM_PROCID = 0 of the allocation but no step variables
+// (Slurm's srun(1) and sbatch(1), "OUTPUT ENVIRONMENT VARIABLES"). A task numbered above 0 is in
+// a step even where an older srun set no step variable.
+long slurm_step_tasks() {
+  const long step = env_number("SLURM_STEP_NUM_TASKS");
+  if (step >= 0) return step;
+  if (std::getenv("SLURM_STEP_ID") || std::getenv("SLURM_STEPID") || env_number("SLURM_PROCID") > 0)
+    return std::max(0L, env_number("SLURM_NTASKS"));
+  return 0;
+}
+
+std::string task_text() {
+  const long rank = env_number("SLURM_PROCID");
+  return (rank >= 0 ? "task " + std::to_string(rank) + " of " : "one of ") + std::to_string(slurm_step_tasks()) +
+         " tasks of a SLURM job step";
 }
 
 #ifdef SEEDCAL_HAVE_MPI
@@ -88,6 +117,27 @@ class MpiExecutor final : public Executor {
 #endif
 
 }  // namespace
+
+void refuse_tasks_without_mpi(const std::string& command) {
+  if (launched_by_mpi() || slurm_step_tasks() <= 1) return;
+  throw InputError(
+      command + ": started as " + task_text() + " without MPI (none of OMPI_COMM_WORLD_SIZE, PMI_SIZE, "
+      "PMIX_RANK is set), so every task would run the whole study by itself. Start the ranks through MPI: "
+      "`srun --mpi=pmix " + command + " ...` (`srun --mpi=list` names the plugins the cluster has) or "
+      "`mpirun -n N " + command + " ...` inside the allocation; or run one task (`srun -n 1`) with --jobs "
+      "for the simulations at once (docs/cluster.md, scripts/slurm/calibrate.sbatch)");
+}
+
+void refuse_several_tasks(const std::string& command) {
+  std::string launch;
+  if (slurm_step_tasks() > 1 && !launched_by_mpi()) launch = task_text();
+  else if (MpiSession::size() > 1) launch = "one of " + std::to_string(MpiSession::size()) + " MPI ranks";
+  else return;
+  throw InputError(command + ": started as " + launch + ", but it runs in one process, so every task would run "
+                   "the whole study by itself. Run it as one task (`srun -n 1`, with --jobs or --threads for "
+                   "the cores), and spread independent studies over a job array (docs/cluster.md, "
+                   "scripts/slurm/)");
+}
 
 #ifdef SEEDCAL_HAVE_MPI
 MpiSession::MpiSession(int* argc, char*** argv) {

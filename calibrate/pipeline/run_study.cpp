@@ -39,6 +39,7 @@ StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std:
 nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const StudyEvaluator& ev,
                           const StudyStore& store, const std::string& stage_reached, const std::string& hash) {
   nlohmann::json j;
+  j["schema_version"] = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
   j["study"] = s.name;
   j["stage_reached"] = stage_reached;
   nlohmann::json calibrated = nlohmann::json::object(), held = nlohmann::json::object();
