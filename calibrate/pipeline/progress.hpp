@@ -8,7 +8,7 @@
 
 namespace seedcal {
 
-// The current UTC time as ISO 8601 (2026-12-01T18:07:17Z).
+// The current UTC time as ISO 8601 (YYYY-MM-DDThh:mm:ssZ).
 std::string utc_now();
 
 class Progress {
