@@ -31,6 +31,9 @@ class CylinderShape final : public WallShape {
   Vec3 symmetry_axis() const override { return Vec3::UnitZ(); }
   double radius_m() const { return radius_; }
   double length_m() const { return length_; }
+  bool inside() const { return inside_; }
+  bool cap_bottom() const { return cap_bottom_; }
+  bool cap_top() const { return cap_top_; }
 
  private:
   // Nearest point of one primitive before the shared-rim rule; `rim`: the point is on a rim.

@@ -51,6 +51,9 @@ class TriangleMeshShape final : public WallShape {
   std::size_t dropped_triangles() const { return dropped_; }
   double cell_size_m() const { return cell_; }
   Triangle triangle(int t) const;
+  // The welded vertices and each triangle's three indices into them (vertex order as read).
+  const std::vector<Vec3>& vertices() const { return verts_; }
+  const std::vector<std::array<std::uint32_t, 3>>& triangle_indices() const { return tri_; }
 
   // Where on a triangle its nearest point lies: inside, on edge k (from vertex k to k + 1), or at
   // vertex k.
