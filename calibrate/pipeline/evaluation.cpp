@@ -33,6 +33,7 @@ nlohmann::json EvalRequest::to_json() const {
   nlohmann::json j = {{"stage", stage}, {"target", target}, {"inputs", inputs}, {"seed", seed}};
   if (model != 0) j["model"] = model;
   if (!out_dir.empty()) j["out_dir"] = out_dir;
+  if (trajectory_interval_s > 0.0) j["trajectory_interval_s"] = trajectory_interval_s;
   return j;
 }
 
@@ -44,6 +45,7 @@ EvalRequest EvalRequest::from_json(const nlohmann::json& j) {
   r.seed = j.at("seed").get<std::uint64_t>();
   r.model = j.value("model", 0);
   r.out_dir = j.value("out_dir", std::string());
+  r.trajectory_interval_s = j.value("trajectory_interval_s", 0.0);
   return r;
 }
 
@@ -68,8 +70,12 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
   try {
-    rec.metrics = run_scene_file(target.scene, scene_overrides(model, target, request.inputs), threads, request.seed, 1,
-                                 request.out_dir);
+    std::vector<std::string> sets = scene_overrides(model, target, request.inputs);
+    if (request.trajectory_interval_s > 0.0 && !request.out_dir.empty()) {
+      sets.push_back("output.trajectory=true");
+      sets.push_back("output.trajectory_interval_s=" + number_text(request.trajectory_interval_s));
+    }
+    rec.metrics = run_scene_file(target.scene, sets, threads, request.seed, 1, request.out_dir);
     rec.status = rec.metrics.value("status", "ok");
     if (rec.status != "ok" && rec.metrics.contains("failure"))
       rec.message = rec.metrics["failure"].value("message", "");

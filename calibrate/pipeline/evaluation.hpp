@@ -20,13 +20,17 @@ struct EvalRequest {
   nlohmann::json inputs;          // parameter path -> natural value (every study parameter)
   std::uint64_t seed = 0;         // unique within the study
   std::string out_dir;            // when set, the scene also writes its CSV and picture here
+  // > 0 with out_dir set: the scene also records its trajectory there, a frame every this many
+  // simulated seconds (study_trajectories.hpp); the run's result is the same.
+  double trajectory_interval_s = 0.0;
 
   nlohmann::json to_json() const;
   static EvalRequest from_json(const nlohmann::json& j);
 };
 
 // The overrides a study run applies to its scene: the model's, then the test's, then every
-// parameter at `inputs` (path -> natural value) as a TOML float.
+// parameter at `inputs` (path -> natural value) as a TOML float (a request that records its
+// trajectory adds [output] trajectory and trajectory_interval_s after them, in evaluate()).
 std::vector<std::string> scene_overrides(const StudyModel& model, const StudyTarget& test, const nlohmann::json& inputs);
 
 // A record of `request` without a result: its stage, inputs and seed, and the metrics that tie it

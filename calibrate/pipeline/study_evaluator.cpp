@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "calibrate/config/toml_reader.hpp"
 #include "store/errors.hpp"
@@ -13,10 +14,28 @@ StudyEvaluator::StudyEvaluator(const StudyConfig& study, StudyStore& store, Exec
   for (std::size_t i = 0; i < store_.evaluations().size(); ++i) stored_[store_.evaluations()[i].seed] = i;
 }
 
+void StudyEvaluator::record_trajectories(const StudyTrajectories& trajectories, const std::string& out_dir) {
+  std::string why;
+  if (!trajectories.IsValid(&why)) throw std::invalid_argument("StudyEvaluator::record_trajectories: " + why);
+  trajectories_ = trajectories;
+  trajectory_dir_ = out_dir;
+}
+
 std::vector<EvalRequest> StudyEvaluator::plan(const std::string& stage, const Eigen::VectorXd& natural, int replicates) {
+  // A confirmation's first replicate of each target records its trajectory when asked to.
+  std::string round_dir;
+  if (stage == "confirm") {
+    char round[32];
+    std::snprintf(round, sizeof round, "round_%02d", ++confirmations_);
+    if (trajectories_.records(stage) && !trajectory_dir_.empty())
+      round_dir = trajectory_dir_ + "/trajectories/confirm/" + round;
+  }
   std::vector<EvalRequest> out;
   for (int rep = 0; rep < replicates; ++rep)
-    for (std::size_t t = 0; t < study_.targets.size(); ++t) out.push_back(plan_one(stage, natural, static_cast<int>(t), 0));
+    for (std::size_t t = 0; t < study_.targets.size(); ++t)
+      out.push_back(plan_one(stage, natural, static_cast<int>(t), 0,
+                             rep == 0 && !round_dir.empty() ? round_dir + "/" + path_slug(study_.targets[t].name)
+                                                            : std::string()));
   return out;
 }
 
@@ -27,6 +46,7 @@ EvalRequest StudyEvaluator::plan_one(const std::string& stage, const Eigen::Vect
   r.target = scene;
   r.model = model;
   r.out_dir = out_dir;
+  if (!out_dir.empty() && trajectories_.records(stage)) r.trajectory_interval_s = trajectories_.interval_s;
   r.inputs = nlohmann::json::object();
   for (std::size_t p = 0; p < study_.parameters.size(); ++p) r.inputs[study_.parameters[p].path] = natural(static_cast<Eigen::Index>(p));
   // Seeds: the study seed's block of 2^20, one per planned run, never reused.

@@ -14,6 +14,7 @@
 #include "calibrate/pipeline/executor.hpp"
 #include "calibrate/pipeline/progress.hpp"
 #include "calibrate/pipeline/study_config.hpp"
+#include "calibrate/pipeline/study_trajectories.hpp"
 #include "store/study_store.hpp"
 
 namespace seedcal {
@@ -28,6 +29,10 @@ class StudyEvaluator {
   // scene to write its CSV and picture there.
   EvalRequest plan_one(const std::string& stage, const Eigen::VectorXd& natural, int scene, int model,
                        const std::string& out_dir = "");
+  // From now on, the runs `trajectories` names record their trajectories under `out_dir`
+  // (study_trajectories.hpp): plan_one marks a request of a recorded stage that has an out_dir,
+  // and plan gives the first replicate of a confirmation its folder under out_dir/trajectories/.
+  void record_trajectories(const StudyTrajectories& trajectories, const std::string& out_dir);
   // Runs the requests (store first), returns the records in request order. `on_record`, when
   // set, is called with each request's index and record as it arrives (stored ones first).
   // `unneeded`, when set, is asked just before a request not in the store would start: a
@@ -59,6 +64,9 @@ class StudyEvaluator {
   Executor& executor_;
   Progress& progress_;
   std::uint64_t counter_ = 0;
+  StudyTrajectories trajectories_;
+  std::string trajectory_dir_;
+  int confirmations_ = 0;  // plan("confirm") calls so far: the rounds' folder numbers
   std::map<std::uint64_t, std::size_t> stored_;  // seed -> index in the store
   std::vector<EvaluationRecord> history_;
   int used_ = 0, reused_ = 0;

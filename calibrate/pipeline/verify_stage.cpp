@@ -5,7 +5,8 @@
 // the test's own `replicates`) fresh DEM runs (unused seeds) at the calibrated values. Per test: mean, sample sd, relative error
 // e = mean / experiment - 1, and within_sd = |mean - experiment| <= experimental sd when the
 // experiment gives one. A test without an experimental value is reported as simulation only. The
-// first replicate of each test writes its CSV and picture under DIR/scenes/MODEL/TEST/.
+// first replicate of each test writes its CSV and picture under DIR/scenes/MODEL/TEST/ (and its
+// trajectory, when the study records the verification's: study_trajectories.hpp).
 //
 // Selection, following the paper's section 3 (the models are compared on every test, with their
 // CPU time): per model
@@ -19,7 +20,6 @@
 // the leaders are reported. Also reported, for information: accuracy per CPU second =
 // (1 - error) / cost.
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -32,12 +32,6 @@
 
 namespace seedcal {
 namespace {
-
-std::string slug(const std::string& name) {
-  std::string out;
-  for (const char c : name) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-  return out.empty() ? std::string("test") : out;
-}
 
 nlohmann::json null_if_nan(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
@@ -291,8 +285,8 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
     for (int t = 0; t < scenes; ++t) {
       first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] = requests.size();
       for (int rep = 0; rep < reps_of(t); ++rep) {
-        const std::string dir = rep == 0 ? out_dir + "/scenes/" + slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
-                                               slug(s.scene_of(t).name)
+        const std::string dir = rep == 0 ? out_dir + "/scenes/" + path_slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
+                                               path_slug(s.scene_of(t).name)
                                          : std::string();
         requests.push_back(ev.plan_one("verify", st.chosen, t, m, dir));
         model_of.push_back(m);
