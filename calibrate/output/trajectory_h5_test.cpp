@@ -1,5 +1,6 @@
 // The trajectory writer: frames of changing size read back through the HDF5 C API, and an XDMF
-// whose every DataItem names a dataset of trajectory.h5 with the dimensions it has.
+// whose every DataItem names a dataset of trajectory.h5 with the dimensions it has: per frame a
+// spatial collection of the spheres and (when the frame has walls) the walls' triangles.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,8 +16,9 @@
 namespace seedcal {
 namespace {
 
-// Frame k: n spheres, sphere i of body 10 + i at (i, k, 0.5 i) mm, radius (1 + i) mm, speed
-// k + i / 10 m/s; one wall.
+// Frame k: n spheres, sphere i of body 10 + i at (i, k, 0.5 i) mm, radius (1 + i) mm, velocity
+// (k, i / 10, 0) m/s, orientation a turn of i / 10 rad about z; one wall, a plate lowered k mm
+// (a 2-triangle patch), except in frame 3, which has none.
 TrajectoryFrame make_frame(int k, std::size_t n) {
   TrajectoryFrame f;
   f.time_s = 0.01 * k;
@@ -26,11 +28,16 @@ TrajectoryFrame make_frame(int k, std::size_t n) {
     f.position_m.push_back(1e-3 * Vec3(x, k, 0.5 * x));
     f.radius_m.push_back(1e-3 * (1.0 + x));
     f.body_id.push_back(10 + static_cast<std::int32_t>(i));
-    f.speed_m_s.push_back(k + 0.1 * x);
+    f.velocity_m_s.emplace_back(k, 0.1 * x, 0.0);
+    f.speed_m_s.push_back(f.velocity_m_s.back().norm());
+    f.orientation.emplace_back(Eigen::AngleAxisd(0.1 * x, Vec3::UnitZ()));
   }
+  if (k == 3) return f;
   f.wall_name = {"plate (plane)"};
   f.wall_origin_m = {Vec3(0.0, 0.0, -0.001 * k)};
   f.wall_orientation = {Quat::Identity()};
+  f.wall_surface.append(tessellate(PlaneShape(Vec3::UnitZ()), Vec3::Zero(), 0.01), f.wall_origin_m[0]);
+  f.wall_index.assign(f.wall_surface.triangle.size(), 0);
   return f;
 }
 
@@ -82,7 +89,7 @@ Written write_sample(const std::string& name) {
 TEST(TrajectoryH5, FramesReadBackWithTheirOwnSizes) {
   const Written w = write_sample("traj-h5");
   h5::Handle f(H5Fopen((w.dir + "/trajectory.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
-  EXPECT_EQ(h5::read_string_attr(f, "format"), "seedcal trajectory 1");
+  EXPECT_EQ(h5::read_string_attr(f, "format"), "seedcal trajectory 2");
   EXPECT_EQ(h5::read_string_attr(f, "seedcal_version"), "0.0.0 (test)");
   EXPECT_EQ(h5::read_string_attr(f, "scene"), "free_drop");
   EXPECT_EQ(h5::read_string_attr(f, "config_file"), "scene.toml");
@@ -119,11 +126,36 @@ TEST(TrajectoryH5, FramesReadBackWithTheirOwnSizes) {
       EXPECT_EQ(speed[i], want.speed_m_s[i]);
       EXPECT_EQ(vertex[i], static_cast<std::int32_t>(i));
     }
-    EXPECT_EQ(h5::read_strings(grp, "wall_name"), (std::vector<std::string>{"plate (plane)"}));
+    const auto vel = read_all<double>(f, G + "/velocity_m_s", H5T_NATIVE_DOUBLE);
+    const auto quat = read_all<double>(f, G + "/orientation_wxyz", H5T_NATIVE_DOUBLE);
+    EXPECT_EQ(dims_of(f, G + "/velocity_m_s"), (std::vector<hsize_t>{n, 3}));
+    EXPECT_EQ(dims_of(f, G + "/orientation_wxyz"), (std::vector<hsize_t>{n, 4}));
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(vel[3 * i + static_cast<std::size_t>(c)], want.velocity_m_s[i][c]);
+      const Quat& q = want.orientation[i];
+      EXPECT_EQ((std::vector<double>(quat.begin() + static_cast<std::ptrdiff_t>(4 * i),
+                                     quat.begin() + static_cast<std::ptrdiff_t>(4 * i + 4))),
+                (std::vector<double>{q.w(), q.x(), q.y(), q.z()}));
+    }
+    const std::size_t walls = want.wall_name.size();
+    EXPECT_EQ(h5::read_strings(grp, "wall_name"), want.wall_name);
+    EXPECT_EQ(dims_of(f, G + "/wall_origin_m"), (std::vector<hsize_t>{walls, 3}));
+    const std::size_t v = want.wall_surface.vertex_m.size(), t = want.wall_surface.triangle.size();
+    EXPECT_EQ(dims_of(f, G + "/wall_vertex_m"), (std::vector<hsize_t>{v, 3}));
+    EXPECT_EQ(dims_of(f, G + "/wall_triangle"), (std::vector<hsize_t>{t, 3}));
+    EXPECT_EQ(dims_of(f, G + "/wall_index"), (std::vector<hsize_t>{t}));
+    if (walls == 0) continue;
     EXPECT_EQ(read_all<double>(f, G + "/wall_origin_m", H5T_NATIVE_DOUBLE),
               (std::vector<double>{0.0, 0.0, -0.001 * source_frame[k]}));
     EXPECT_EQ(read_all<double>(f, G + "/wall_orientation_wxyz", H5T_NATIVE_DOUBLE),
               (std::vector<double>{1.0, 0.0, 0.0, 0.0}));
+    const auto verts = read_all<double>(f, G + "/wall_vertex_m", H5T_NATIVE_DOUBLE);
+    for (std::size_t j = 0; j < v; ++j)  // the patch in world coordinates: at the plate's height
+      EXPECT_EQ(verts[3 * j + 2], -0.001 * source_frame[k]);
+    const auto tris = read_all<std::int32_t>(f, G + "/wall_triangle", H5T_NATIVE_INT32);
+    for (std::size_t j = 0; j < t; ++j)
+      for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(tris[3 * j + c], want.wall_surface.triangle[j][c]);
+    EXPECT_EQ(read_all<std::int32_t>(f, G + "/wall_index", H5T_NATIVE_INT32), want.wall_index);
   }
 }
 
@@ -141,7 +173,9 @@ TEST(TrajectoryH5, XdmfPointsAtEveryDatasetWithItsDimensions) {
   const std::string xdmf = testing::read_text(w.dir + "/trajectory.xdmf");
   ASSERT_FALSE(xdmf.empty());
   const auto items = data_items(xdmf);
-  EXPECT_EQ(items.size(), 3u * 5u);  // connectivity, position, radius, body id, speed per frame
+  // Spheres: connectivity, position, radius, body id, speed, velocity, orientation; walls (frames
+  // 0 and 1, not the last): triangles, vertices, wall index.
+  EXPECT_EQ(items.size(), 3u * 7u + 2u * 3u);
   h5::Handle f(H5Fopen((w.dir + "/trajectory.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open");
   for (const auto& [ref, dims] : items) {
     ASSERT_EQ(ref.rfind("trajectory.h5:", 0), 0u) << ref;
@@ -165,14 +199,27 @@ TEST(TrajectoryH5, XdmfPointsAtEveryDatasetWithItsDimensions) {
       "assert r.tag == 'Xdmf' and r.get('Version') == '3.0'\n"
       "c = r.find('Domain/Grid')\n"
       "assert c.get('GridType') == 'Collection' and c.get('CollectionType') == 'Temporal'\n"
-      "for g in c.findall('Grid'):\n"
-      "    n = g.find('Topology').get('NumberOfElements')\n"
-      "    assert g.find('Topology').get('TopologyType') == 'Polyvertex'\n"
-      "    assert g.find('Geometry').get('GeometryType') == 'XYZ'\n"
-      "    assert [a.get('Name') for a in g.findall('Attribute')] == ['radius_m', 'body_id', 'speed_m_s']\n"
-      "    for d in g.iter('DataItem'):\n"
-      "        assert d.get('Dimensions').split()[0] == n\n"
-      "        print(d.text.strip(), d.get('Dimensions'))\n";
+      "walls = 0\n"
+      "for frame in c.findall('Grid'):\n"
+      "    assert frame.get('GridType') == 'Collection' and frame.get('CollectionType') == 'Spatial'\n"
+      "    assert frame.find('Time') is not None\n"
+      "    for g in frame.findall('Grid'):\n"
+      "        n = g.find('Topology').get('NumberOfElements')\n"
+      "        assert g.find('Geometry').get('GeometryType') == 'XYZ'\n"
+      "        names = [a.get('Name') for a in g.findall('Attribute')]\n"
+      "        if g.get('Name') == 'spheres':\n"
+      "            assert g.find('Topology').get('TopologyType') == 'Polyvertex'\n"
+      "            assert names == ['radius_m', 'body_id', 'speed_m_s', 'velocity_m_s', 'orientation_wxyz'], names\n"
+      "            for d in g.iter('DataItem'):\n"
+      "                assert d.get('Dimensions').split()[0] == n\n"
+      "        else:\n"
+      "            assert g.get('Name') == 'walls' and g.find('Topology').get('TopologyType') == 'Triangle'\n"
+      "            assert names == ['wall_index'] and g.find('Attribute').get('Center') == 'Cell'\n"
+      "            assert g.find('Topology/DataItem').get('Dimensions') == n + ' 3'\n"
+      "            walls += 1\n"
+      "        for d in g.iter('DataItem'):\n"
+      "            print(d.text.strip(), d.get('Dimensions'))\n"
+      "assert walls == 2, walls\n";
   testing::write_text(w.dir + "/check.py", script);
   const auto r = testing::run_shell("python3 " + w.dir + "/check.py " + w.dir + "/trajectory.xdmf 2>&1");
   ASSERT_EQ(r.exit_code, 0) << r.output;

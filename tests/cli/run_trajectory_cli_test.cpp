@@ -1,8 +1,10 @@
 // End-to-end: `seedcal run` writes a trajectory on request ([output] trajectory = true, here by
 // --set): trajectory.h5 with the run's provenance and one frame per interval, trajectory.xdmf
-// naming each frame; none unless asked; bad [output] values exit 2 naming the key and the range.
+// naming each frame, with the walls drawn where they are in each frame; none unless asked; bad
+// [output] values exit 2 naming the key and the range.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -14,6 +16,17 @@ namespace seedcal {
 namespace {
 
 using testing::run_cli;
+
+// A Python with h5py (scripts/setup.sh installs python3-h5py for the system's python3): the one
+// CMake found, else the system's, else the first on PATH.
+std::string python_with_h5py() {
+  std::vector<std::string> candidates;
+  if (const char* p = std::getenv("SEEDCAL_PYTHON")) candidates.emplace_back(p);
+  candidates.insert(candidates.end(), {"/usr/bin/python3", "python3"});
+  for (const auto& py : candidates)
+    if (testing::run_shell(py + " -c 'import h5py, numpy' > /dev/null 2>&1").exit_code == 0) return py;
+  return "";
+}
 
 // One seed (nine spheres) dropped 150 mm: about 0.3 s simulated, a second of CPU.
 std::string free_drop() {
@@ -60,6 +73,30 @@ TEST(RunTrajectoryCli, FreeDropWritesFramesAtTheInterval) {
   EXPECT_EQ(static_cast<std::size_t>(std::distance(std::sregex_iterator(xdmf.begin(), xdmf.end(), nine),
                                                    std::sregex_iterator())),
             frames);
+}
+
+// The direct shear miniature of tests/cli/scenes_mini_test.cpp (9 seeds in a 30 mm box, the
+// servo-controlled lid, the upper ring sheared 1 mm): tests/scripts/trajectory_xdmf_check.py reads
+// trajectory.xdmf back as a reader would, finds every DataItem in trajectory.h5 with its declared
+// dimensions, the upper ring (sheared) and the lid (servo-controlled, in from the end of the pour)
+// at other vertices in the last frame than in their first, the lower ring (fixed) at the same.
+TEST(RunTrajectoryCli, TheXdmfDrawsTheWallsWhereTheyAre) {
+  const std::string py = python_with_h5py();
+  ASSERT_FALSE(py.empty()) << "no python3 with h5py: install python3-h5py (scripts/setup.sh)";
+  const std::string out = testing::scratch_dir("traj-shear");
+  const auto r = run_cli("run " + testing::source_dir() +
+                         "/data/scenes/jinong1/direct_shear.toml --set fidelity=quick --seed 1 --threads 1 --out " +
+                         out +
+                         " --set direct_shear.quick.diameter_m=0.03 --set direct_shear.quick.sample_height_m=0.012"
+                         " --set direct_shear.quick.shear_displacement_m=0.001"
+                         " --set direct_shear.quick.shear_speed_m_s=0.05"
+                         " --set output.trajectory=true --set output.trajectory_interval_s=0.01");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto check = testing::run_shell(py + " " + testing::source_dir() + "/tests/scripts/trajectory_xdmf_check.py " +
+                                        out + " --moving upper_ring --moving lid --still lower_ring 2>&1");
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_NE(check.output.find("upper_ring: "), std::string::npos) << check.output;
+  std::filesystem::remove_all(out);
 }
 
 TEST(RunTrajectoryCli, NoTrajectoryUnlessAsked) {
