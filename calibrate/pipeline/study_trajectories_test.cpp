@@ -1,8 +1,8 @@
 // Trajectories of a calibration's runs: --trajectory's values, the requests that carry the
 // setting to a worker (JSON), the plan that gives a confirmation's first replicate its folder and
 // marks the verification's scene folders, and an evaluation that writes trajectory.h5 and
-// trajectory.xdmf there with the same result as without (the miniature study: a two-sphere impact,
-// milliseconds).
+// trajectory.xdmf there with the same result as without (the miniature study: a two-sphere
+// impact).
 #include <gtest/gtest.h>
 
 #include <cmath>
