@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The whole test suite, in stages. Expects scripts/setup.sh to have built build/ (the README's
 # test command builds it with --preset ci: Release, warnings as errors).
-#   0. Chromium (headless) for the report's browser test.
-#   1. Release suite: every ctest test (unit, physics, regression, cli, browser).
+#   0. Chromium (headless) for the report's browser test; LIGGGHTS for the export's cross-check.
+#   1. Release suite: every ctest test (unit, physics, regression, cli, browser, validation).
 #   2. ASan + UBSan + LeakSanitizer build (clang) of the same suite (tests labelled `slow` left out to
 #      stay in budget; cli_scenes_mini_test runs every scene kind and the MPI executor in miniature).
 #   3. The libFuzzer targets of that build (STL, study and clump readers), 60 s each.
@@ -16,8 +16,11 @@ start=$(date +%s)
 
 # The report's browser test (reports_browser_test, label `browser`) loads report.html in headless
 # Chromium and skips without it: 24 packages, 122 MB, about 35 s to install (docs/reports.md).
-echo "== stage 0: headless Chromium for the report's browser test =="
+echo "== stage 0: headless Chromium for the report's browser test, LIGGGHTS for the export's =="
 ensure_packages chromium
+# validation_export_settle_test runs the deck `seedcal export` writes in LIGGGHTS (Debian package
+# liggghts, docs/export.md); it skips without it, and CI fails on that skip (below).
+ensure_packages liggghts
 
 # A skipped test shows as skipped; CI fails on any skip but these (name: why it may skip):
 #   physics_determinism_test: the CPU has neither AVX2 nor AVX-512F, so only the one-lane kernel runs.

@@ -120,13 +120,15 @@ const StudyTarget& StudyConfig::scene_of(int index) const {
   return i < targets.size() ? targets.at(i) : checks.at(i - targets.size());
 }
 
-StudyConfig read_study(const std::string& path, const std::vector<std::string>& sets) {
+namespace {
+
+// A study from its parsed document and the text it is recorded (and fingerprinted) as.
+StudyConfig read_study_doc(const std::string& path, toml::value doc, std::string text) {
   StudyConfig s;
   s.file = path;
   s.dir = std::filesystem::path(path).parent_path().string();
-  s.doc = TomlReader::parse_file(path);
-  apply_overrides(s.doc, sets);
-  s.text = toml::format(s.doc);
+  s.doc = std::move(doc);
+  s.text = std::move(text);
   auto diag = std::make_shared<ConfigDiagnostics>();
   diag->file = path;
   TomlReader root(s.doc, "", diag);
@@ -204,6 +206,26 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
   root.check_unknown_keys();
   diag->throw_if_any();
   return s;
+}
+
+}  // namespace
+
+StudyConfig read_study(const std::string& path, const std::vector<std::string>& sets) {
+  toml::value doc = TomlReader::parse_file(path);
+  apply_overrides(doc, sets);
+  std::string text = toml::format(doc);
+  return read_study_doc(path, std::move(doc), std::move(text));
+}
+
+StudyConfig read_study_text(const std::string& text, const std::string& path) {
+  std::istringstream in(text);
+  toml::value doc;
+  try {
+    doc = toml::parse(in, path);
+  } catch (const std::exception& e) {
+    throw InputError(path + ": the recorded study text does not parse: " + std::string(e.what()));
+  }
+  return read_study_doc(path, std::move(doc), text);
 }
 
 namespace {

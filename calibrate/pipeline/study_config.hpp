@@ -106,6 +106,10 @@ struct StudyConfig {
 
 // Reads and validates a study file (throws InputError with every problem found).
 StudyConfig read_study(const std::string& path, const std::vector<std::string>& sets = {});
+// The same from a study's recorded text (the store's config text: the file after the overrides it
+// was run with), its relative paths resolved against `path`, the study file's location; s.text is
+// `text` itself, so the fingerprint of an unchanged study is the one recorded.
+StudyConfig read_study_text(const std::string& text, const std::string& path);
 
 // Fingerprint of everything that decides the study's results: the study text and the text of
 // every scene file it names (a changed scene refuses --resume as a changed study does).
