@@ -20,6 +20,7 @@ namespace {
 struct CalibrateArgs {
   StudyRunOptions run;
   bool quiet = false;
+  std::string trajectory;  // --trajectory[=verify|confirm|all]
 };
 
 // The worker command line for this study: this program's `calibrate-worker`.
@@ -37,9 +38,17 @@ WorkerCommand worker_command(const StudyRunOptions& o) {
 void calibrate(CalibrateArgs& a, const GlobalOptions& g) {
   refuse_tasks_without_mpi("seedcal calibrate");  // srun without MPI would run the study once per task
   StudyRunOptions o = a.run;
+  if (!a.trajectory.empty()) {
+    std::string why;
+    if (!parse_study_trajectories(a.trajectory, &o.trajectories, &why)) throw InputError("calibrate: " + why);
+  }
   o.threads = g.threads > 0 ? g.threads : (MpiSession::size() > 1 ? 1 : std::max(1, g.resolved_threads() / o.jobs));
   if (g.seed_given) o.sets.push_back("seed=" + std::to_string(g.seed));
-  if (o.out_dir.empty()) throw InputError("calibrate: --out DIR is required");
+  if (o.out_dir.empty() && !o.dry_run) throw InputError("calibrate: --out DIR is required");
+  if (o.dry_run) {  // the plan and its cost on this machine, nothing run (said once under mpirun)
+    if (MpiSession::rank() == 0) run_study(o, {});
+    return;
+  }
   o.progress_on_terminal = !a.quiet;
   o.render_report = [](const std::string& dir) { reports::render_report(dir); };
   if (MpiSession::size() > 1) {
@@ -70,8 +79,14 @@ void add_calibrate_command(CLI::App& app, GlobalOptions& g) {
   CLI::App* sub = app.add_subcommand(
       "calibrate", "fit DEM parameters to laboratory targets: screen, steepest ascent, surrogate, NLopt, confirm");
   sub->add_option("study", a->run.study_file, "study file (TOML), e.g. data/studies/jinong1-quick.toml")->required();
-  sub->add_option("--out", a->run.out_dir, "study directory: study.h5, summary.json, calibrate.log")->required();
+  sub->add_option("--out", a->run.out_dir, "study directory: study.h5, summary.json, calibrate.log (required unless --dry-run)");
+  sub->add_flag("--dry-run", a->run.dry_run,
+                "print the planned DEM runs and their CPU time on this machine, and run nothing");
   sub->add_flag("--resume", a->run.resume, "continue the study stored in --out (finished runs are not redone)");
+  sub->add_flag("--trajectory{verify}", a->trajectory,
+                "record trajectories for ParaView (trajectory.h5/.xdmf): =verify (default; the first run of every "
+                "verification test under every model), =confirm (the first run of every target at every "
+                "confirmation round) or =all");
   sub->add_flag("--force-unlock", a->run.force_unlock,
                 "take over the study directory's lock even when another machine holds it (that run must be gone)");
   sub->add_option("--jobs", a->run.jobs, "simulations at once on this machine (worker processes; default 1)")

@@ -5,7 +5,10 @@
 #include <filesystem>
 #include <iostream>
 
+#include <unistd.h>
+
 #include "app/commands.hpp"
+#include "calibrate/output/run_progress_line.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "store/atomic_file.hpp"
 #include "store/errors.hpp"
@@ -18,6 +21,7 @@ struct RunArgs {
   std::string out = "out";
   std::vector<std::string> sets;
   int jobs = 1;
+  bool quiet = false;
 };
 
 void run_scene_command(const RunArgs& a, const GlobalOptions& g) {
@@ -27,7 +31,14 @@ void run_scene_command(const RunArgs& a, const GlobalOptions& g) {
   // More jobs than repeats would idle.
   const int jobs = std::min(a.jobs, scene.repeats);
   const int threads = g.threads_per_job(jobs);
-  nlohmann::json metrics = run_scene(scene, threads, g.seed, 0, a.out, jobs);
+  // A status line on a terminal (the plan gives the simulated time a run will take).
+  const bool line_on = !a.quiet && ::isatty(STDERR_FILENO);
+  RunProgressLine line(line_on ? plan_scene(scene) : RunPlan{}, scene.repeats, jobs, line_on);
+  nlohmann::json metrics =
+      run_scene(scene, threads, g.seed, 0, a.out, jobs,
+                line_on ? [&line](std::size_t k, const Simulation& sim) { line.update(k, sim); }
+                        : std::function<void(std::size_t, const Simulation&)>{});
+  line.clear();
   metrics["scene"] = scene.kind;
   metrics["provenance"] = {{"seedcal_version", version_string()},
                            {"config_file", a.scene},
@@ -56,6 +67,7 @@ void add_run_command(CLI::App& app, GlobalOptions& g) {
   sub->add_option("--jobs", args->jobs,
                   "repeats run at once, one thread each (default 1); the same results as one at a time")
       ->check(CLI::Range(1, 1024));
+  sub->add_flag("--quiet", args->quiet, "no progress line on the terminal");
   add_common_options(*sub, g);
   sub->callback([args, &g] { run_scene_command(*args, g); });
 }

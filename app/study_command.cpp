@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <memory>
+
+#include <unistd.h>
 
 #include "app/commands.hpp"
 #include "app/executors/mpi_executor.hpp"
@@ -20,7 +23,30 @@
 namespace seedcal {
 namespace {
 
+// --dry-run and --quiet of every DEM study.
+struct PlanFlags {
+  bool dry_run = false;
+  bool quiet = false;
+};
+
+void add_plan_flags(CLI::App* sub, PlanFlags& f) {
+  sub->add_flag("--dry-run", f.dry_run, "print the planned DEM runs and their CPU time on this machine, and run nothing");
+  sub->add_flag("--quiet", f.quiet, "no progress line on the terminal");
+}
+
+// Prices the study's runs and says so before the first one: on stdout for a dry run (then returns
+// null: nothing is to run), else on stderr, and returns the progress line the study reports to.
+std::unique_ptr<StudyProgress> start_study(const std::string& kind, const std::vector<PlannedRuns>& plan, int threads,
+                                           int slots, const PlanFlags& f) {
+  const StudyPlanEstimate e = estimate_study_plan(plan, threads);
+  for (const std::string& line : describe_study_plan(kind, e, slots))
+    (f.dry_run ? std::cout : std::cerr) << (f.dry_run ? "" : "seedcal: ") << line << "\n";
+  if (f.dry_run) return nullptr;
+  return std::make_unique<StudyProgress>(kind, e, slots, !f.quiet && ::isatty(STDERR_FILENO));
+}
+
 struct StudyArgs {
+  PlanFlags plan;
   PaperStudyOptions o;
   std::string out = "out/study";
   std::string variety = "jinong1";
@@ -28,11 +54,13 @@ struct StudyArgs {
 };
 
 struct TradeoffArgs {
+  PlanFlags plan;
   TradeoffOptions o;
   std::string out = "out/tradeoff";
 };
 
 struct TrendArgs {
+  PlanFlags plan;
   TrendOptions o;
   std::string out = "out/trend";
 };
@@ -70,6 +98,7 @@ void add_dem_options(CLI::App* sub, StudyArgs& a) {
   sub->add_option("--set", a.o.sets, "override for every scene: key=value (e.g. particle.clump_file=...)");
   sub->add_option("--repeats", a.o.repeats, "free-drop repeats (seeds)")->check(CLI::Range(1, 1000))->capture_default_str();
   sub->add_option("--out", a.out, "output directory")->capture_default_str();
+  add_plan_flags(sub, a.plan);
 }
 
 }  // namespace
@@ -93,7 +122,12 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
     prepare(*a, g);
     if (!a->drum) a->o.drum_scene.clear();
     else check_file("--drum-scene", a->o.drum_scene);
-    finish("multicontact", multicontact_study(a->o), *a, g);
+    const auto progress = start_study("multicontact", multicontact_plan(a->o), a->o.threads, 1, a->plan);
+    if (!progress) return;
+    a->o.progress = progress.get();
+    auto j = multicontact_study(a->o);
+    progress->clear();
+    finish("multicontact", j, *a, g);
   });
 
   CLI::App* st = sub->add_subcommand("stiffness", "free drop under HMNR at several Young's moduli: contact points and rebound");
@@ -103,7 +137,12 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   add_common_options(*st, g);
   st->callback([a, &g] {
     prepare(*a, g);
-    finish("stiffness", stiffness_study(a->o), *a, g);
+    const auto progress = start_study("stiffness", stiffness_plan(a->o), a->o.threads, 1, a->plan);
+    if (!progress) return;
+    a->o.progress = progress.get();
+    auto j = stiffness_study(a->o);
+    progress->clear();
+    finish("stiffness", j, *a, g);
   });
 
   auto t = std::make_shared<TradeoffArgs>();
@@ -125,6 +164,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   tr->add_option("--out", t->out, "output directory")->capture_default_str();
   tr->add_option("--jobs", t->o.jobs, "a row's repeats at once, one thread each (default 1)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
+  add_plan_flags(tr, t->plan);
   add_common_options(*tr, g);
   tr->callback([t, &g] {
     refuse_several_tasks("seedcal study");  // several tasks would each run it whole
@@ -132,7 +172,11 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
     t->o.seed = g.seed;
     t->o.out_dir = t->out;
     check_file("--scene", t->o.scene);
+    const auto progress = start_study("tradeoff", tradeoff_plan(t->o), t->o.threads, t->o.jobs, t->plan);
+    if (!progress) return;
+    t->o.progress = progress.get();
     auto j = tradeoff_study(t->o);
+    progress->clear();
     j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", t->o.threads},
                        {"jobs", t->o.jobs}};
     write_study("tradeoff", j, tradeoff_csv(j), t->out);
@@ -152,6 +196,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   te->add_option("--out", tn->out, "output directory")->capture_default_str();
   te->add_option("--jobs", tn->o.jobs, "simulations at once, one thread each (default 1)")
       ->check(CLI::Range(1, 1000))->capture_default_str();
+  add_plan_flags(te, tn->plan);
   add_common_options(*te, g);
   te->callback([tn, &g] {
     refuse_several_tasks("seedcal study");  // several tasks would each run it whole
@@ -159,7 +204,11 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
     tn->o.seed = g.seed;
     tn->o.out_dir = tn->out;
     check_file("--scene", tn->o.scene);
+    const auto progress = start_study("trend", trend_plan(tn->o), tn->o.threads, tn->o.jobs, tn->plan);
+    if (!progress) return;
+    tn->o.progress = progress.get();
     auto j = trend_study(tn->o);
+    progress->clear();
     j["provenance"] = {{"seedcal_version", version_string()}, {"seed", g.seed}, {"threads", tn->o.threads},
                        {"jobs", tn->o.jobs}};
     std::cerr << j["verdict"].get<std::string>() << "\n";

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <unistd.h>
 
+#include "calibrate/pipeline/cost_estimate.hpp"
 #include "calibrate/pipeline/pipeline.hpp"
 #include "calibrate/pipeline/scene_check.hpp"
 #include "store/atomic_file.hpp"
@@ -160,6 +161,21 @@ void write_study_report(const StudyRunOptions& o, Progress& progress) {
   }
 }
 
+// The estimate as the summary's sessions record it.
+nlohmann::json cost_json(const StudyCostEstimate& e) {
+  nlohmann::json stages = nlohmann::json::object();
+  for (const StageRuns& r : e.stages) stages[r.stage] = {{"runs", r.runs}, {"at_most", r.at_most}, {"cpu_s", r.cpu_s}};
+  nlohmann::json scenes = nlohmann::json::array();
+  for (const SceneCost& c : e.scenes)
+    scenes.push_back({{"test", c.test}, {"model", c.model}, {"kind", c.kind}, {"seeds", c.plan.seeds},
+                      {"spheres", c.plan.spheres}, {"simulated_s", c.plan.simulated_s()}, {"dt_s", c.plan.dt_s},
+                      {"cpu_s_per_sphere_step", c.cpu_s_per_sphere_step}, {"cpu_s_per_run", c.cpu_s}});
+  for (std::size_t k = 0; k < e.scenes.size(); ++k)
+    if (!e.scenes[k].refused.empty()) scenes[k]["refused"] = e.scenes[k].refused;
+  return {{"runs", e.runs}, {"runs_at_most", e.runs_at_most}, {"cpu_s", e.cpu_s}, {"cpu_s_at_most", e.cpu_s_at_most},
+          {"probe_cpu_s", e.probe_cpu_s}, {"stages", stages}, {"scenes", scenes}};
+}
+
 }  // namespace
 
 nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_executor) {
@@ -168,6 +184,11 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
   const std::vector<std::string> warnings = check_study_scenes(s);
   for (const std::string& w : warnings) std::cerr << "seedcal: warning: " << w << "\n";
   const std::string hash = study_fingerprint(s);
+  const StudyCostEstimate cost = estimate_study_cost(s, o.threads);
+  if (o.dry_run) {
+    for (const std::string& line : describe_cost(cost, o.jobs)) std::cout << line << "\n";
+    return cost_json(cost);
+  }
   const std::unique_ptr<Executor> executor = make_executor(hash);
   std::filesystem::create_directories(o.out_dir);
   // One calibrate at a time on a study directory (store/study_lock.hpp): taken before the store is
@@ -187,7 +208,15 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
                (store.evaluations().empty() ? "" : ", resuming with " + std::to_string(store.evaluations().size()) + " stored runs"));
 
   for (const std::string& w : warnings) progress.log("warning: " + w);
+  // What the whole study costs (runs already in the store are not redone).
+  for (const std::string& line : describe_cost(cost, executor->slots())) {
+    if (!o.progress_on_terminal || !::isatty(STDERR_FILENO)) std::cerr << "seedcal: " << line << "\n";
+    progress.log(line);
+  }
+  sessions[session]["estimate"] = cost_json(cost);
+  store.set_stage("sessions", sessions);
   StudyEvaluator ev(s, store, *executor, progress);
+  if (o.trajectories.any()) ev.record_trajectories(o.trajectories, o.out_dir);
   PipelineState st;
   auto checkpoint = [&](const std::string& stage) {
     sessions[session]["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

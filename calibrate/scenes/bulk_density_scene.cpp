@@ -24,7 +24,10 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
-  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
+  if (ctx.check_only) {  // validated: run nothing
+    if (ctx.plan) *ctx.plan = plan_bulk_density(spec);
+    return nlohmann::json::object();
+  }
 
   const BulkDensityResult r = run_bulk_density(spec);
   nlohmann::json j;

@@ -50,7 +50,10 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
-  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
+  if (ctx.check_only) {  // validated: run nothing
+    if (ctx.plan) *ctx.plan = plan_direct_shear(spec);
+    return nlohmann::json::object();
+  }
 
   const DirectShearResult r = run_direct_shear(spec);
   nlohmann::json j;

@@ -36,7 +36,10 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
-  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
+  if (ctx.check_only) {  // validated: run nothing
+    if (ctx.plan) *ctx.plan = plan_drum(spec);
+    return nlohmann::json::object();
+  }
 
   const DrumResult r = run_drum(spec);
   nlohmann::json j;

@@ -31,7 +31,10 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
-  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
+  if (ctx.check_only) {  // validated: run nothing
+    if (ctx.plan) *ctx.plan = plan_free_drop(spec);
+    return nlohmann::json::object();
+  }
 
   const FreeDropResult r = run_free_drop(spec);
   nlohmann::json j;

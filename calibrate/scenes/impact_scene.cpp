@@ -110,7 +110,10 @@ nlohmann::json run_impact_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
-  if (ctx.check_only) return nlohmann::json::object();  // validated: run nothing
+  if (ctx.check_only) {  // validated: run nothing
+    if (ctx.plan) *ctx.plan = plan_impact(spec);
+    return nlohmann::json::object();
+  }
 
   const ImpactResult r = run_impact(spec);
   nlohmann::json j;

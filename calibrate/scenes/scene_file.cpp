@@ -49,17 +49,33 @@ nlohmann::json run_with(const SceneFile& f, const SceneContext& ctx, int repeats
 }  // namespace
 
 std::vector<std::string> check_scene(const SceneFile& f) {
-  SceneContext ctx{f.path, "", 1, 0, {}};
+  SceneContext ctx;
+  ctx.config_path = f.path;
   ctx.check_only = true;  // the runner reads its whole config and returns before simulating
   const nlohmann::json j = run_with(f, ctx, 1);
   return j.value("warnings", std::vector<std::string>{});
 }
 
+RunPlan plan_scene(const SceneFile& f) {
+  SceneContext ctx;
+  ctx.config_path = f.path;
+  ctx.check_only = true;
+  RunPlan plan;
+  ctx.plan = &plan;
+  run_with(f, ctx, 1);
+  return plan;
+}
+
 nlohmann::json run_scene(const SceneFile& f, int threads, std::uint64_t seed, int repeats, const std::string& out_dir,
-                         int jobs) {
+                         int jobs, const std::function<void(std::size_t run, const Simulation& sim)>& progress) {
   if (!out_dir.empty()) std::filesystem::create_directories(out_dir);
-  SceneContext ctx{f.path, out_dir, threads, seed, {}};
+  SceneContext ctx;
+  ctx.config_path = f.path;
+  ctx.out_dir = out_dir;
+  ctx.threads = threads;
+  ctx.seed = seed;
   ctx.jobs = jobs;
+  ctx.progress = progress;
   return run_with(f, ctx, repeats > 0 ? repeats : f.repeats);
 }
 

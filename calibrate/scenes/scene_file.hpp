@@ -4,6 +4,7 @@
 // return the aggregated metrics (scene_registry.hpp, run_repeated). A bad config throws
 // InputError; a failed simulation comes back with status != "ok".
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -30,10 +31,15 @@ SceneFile load_scene_file(const std::string& path, const std::vector<std::string
 // the config's warnings (what a run would say under "warnings").
 std::vector<std::string> check_scene(const SceneFile& scene);
 
+// What one run of the scene would simulate (run_plan.hpp), worked out from its config; runs
+// nothing. Throws as check_scene does.
+RunPlan plan_scene(const SceneFile& scene);
+
 // Runs `repeats` seeds (seed, seed + 1, ...), `jobs` at a time; repeats = 0: the file's own
-// `repeats`.
+// `repeats`. `progress` (optional) is called as SceneContext::progress says.
 nlohmann::json run_scene(const SceneFile& scene, int threads, std::uint64_t seed, int repeats,
-                         const std::string& out_dir = "", int jobs = 1);
+                         const std::string& out_dir = "", int jobs = 1,
+                         const std::function<void(std::size_t run, const Simulation& sim)>& progress = {});
 
 nlohmann::json run_scene_file(const std::string& path, const std::vector<std::string>& sets, int threads,
                               std::uint64_t seed, int repeats, const std::string& out_dir = "", int jobs = 1);

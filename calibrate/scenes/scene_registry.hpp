@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibrate/config/toml_reader.hpp"
+#include "solver/scenes/run_plan.hpp"
 #include "solver/scenes/scene_common.hpp"
 
 namespace seedcal {
@@ -20,6 +21,11 @@ struct SceneContext {
   std::uint64_t seed = 0;
   FrameObserver observer;  // the run's frames ([output] trajectory = true); runners pass it on
   bool check_only = false;  // read and validate the whole config, then return without running
+  RunPlan* plan = nullptr;  // with check_only: set to what a run would simulate (run_plan.hpp)
+  // Progress of each run (optional, a status line): called with the run's index in the series and
+  // its simulation every progress_interval_s of simulated time, from the thread that runs it.
+  std::function<void(std::size_t run, const Simulation& sim)> progress;
+  double progress_interval_s = 1e-3;
   int jobs = 1;             // run_repeated: runs at once (each with `threads` threads)
 };
 

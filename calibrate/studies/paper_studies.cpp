@@ -17,6 +17,12 @@ std::vector<std::string> with(std::vector<std::string> sets, std::initializer_li
   return sets;
 }
 
+std::string youngs_modulus_set(double e) {
+  char set[96];
+  std::snprintf(set, sizeof set, "materials.seed.youngs_modulus_pa=%.17g", e);
+  return set;
+}
+
 std::string sub_dir(const PaperStudyOptions& o, const std::string& name) {
   return o.out_dir.empty() ? std::string() : o.out_dir + "/scenes/" + name;
 }
@@ -24,6 +30,7 @@ std::string sub_dir(const PaperStudyOptions& o, const std::string& name) {
 // Free drop: rebound height (m) and contact points at impact, every repeat.
 nlohmann::json free_drop(const PaperStudyOptions& o, const std::vector<std::string>& sets, const std::string& name) {
   const auto m = run_scene_file(o.free_drop_scene, sets, o.threads, o.seed, o.repeats, sub_dir(o, name));
+  if (o.progress) o.progress->scene_done(o.free_drop_scene, sets, m);
   nlohmann::json j = {{"rebound_height_m", sample_stats(per_run(m, "rebound_height_m"))},
                       {"contact_points", sample_stats(per_run(m, "contact_points"))},
                       {"cpu_seconds", m.value("cpu_seconds", 0.0)},
@@ -33,6 +40,27 @@ nlohmann::json free_drop(const PaperStudyOptions& o, const std::vector<std::stri
 }
 
 }  // namespace
+
+std::vector<PlannedRuns> multicontact_plan(const PaperStudyOptions& o) {
+  std::vector<PlannedRuns> plan;
+  for (const char* model : {"hertz_mindlin", "hmnr"})
+    plan.push_back({std::string("free drop, ") + model, o.free_drop_scene,
+                    with(o.sets, {std::string("contact.model=") + model}), o.repeats});
+  if (!o.drum_scene.empty())
+    for (const char* model : {"hertz_mindlin", "hmnr"})
+      plan.push_back({std::string("drum, ") + model, o.drum_scene, with(o.sets, {std::string("contact.model=") + model}),
+                      o.drum_repeats});
+  return plan;
+}
+
+std::vector<PlannedRuns> stiffness_plan(const PaperStudyOptions& o) {
+  std::vector<PlannedRuns> plan;
+  for (const double e : o.youngs_moduli_pa) {
+    const std::string set = youngs_modulus_set(e);
+    plan.push_back({"free drop, " + set, o.free_drop_scene, with(o.sets, {"contact.model=hmnr", set}), o.repeats});
+  }
+  return plan;
+}
 
 nlohmann::json multicontact_study(const PaperStudyOptions& o) {
   nlohmann::json j = {{"study", "multicontact"}, {"free_drop_scene", o.free_drop_scene}, {"sets", o.sets},
@@ -48,8 +76,9 @@ nlohmann::json multicontact_study(const PaperStudyOptions& o) {
                                {"note", "paper section 4, 188-sphere automatic Jinong 1 model, 10 repeats"}}}};
   if (!o.drum_scene.empty()) {
     auto drum = [&](const std::string& model, const std::string& name) {
-      const auto m = run_scene_file(o.drum_scene, with(o.sets, {"contact.model=" + model}), o.threads, o.seed,
-                                    o.drum_repeats, sub_dir(o, name));
+      const std::vector<std::string> sets = with(o.sets, {"contact.model=" + model});
+      const auto m = run_scene_file(o.drum_scene, sets, o.threads, o.seed, o.drum_repeats, sub_dir(o, name));
+      if (o.progress) o.progress->scene_done(o.drum_scene, sets, m);
       nlohmann::json d = {{"dynamic_angle_of_repose_deg", sample_stats(per_run(m, "dynamic_angle_of_repose_deg"))},
                           {"cpu_seconds", m.value("cpu_seconds", 0.0)}, {"status", m.value("status", "ok")}};
       d["frames_sd_deg"] = sample_stats(per_run(m, "dynamic_angle_frames_sd_deg"))["samples"];
@@ -71,8 +100,8 @@ nlohmann::json stiffness_study(const PaperStudyOptions& o) {
                       {"repeats", o.repeats}, {"seed", o.seed}, {"rows", nlohmann::json::array()}};
   std::vector<double> points, heights;
   for (const double e : o.youngs_moduli_pa) {
-    char set[96], name[64];
-    std::snprintf(set, sizeof set, "materials.seed.youngs_modulus_pa=%.17g", e);
+    const std::string set = youngs_modulus_set(e);
+    char name[64];
     std::snprintf(name, sizeof name, "free_drop_E%.3g", e);
     auto row = free_drop(o, with(o.sets, {"contact.model=hmnr", set}), name);
     row["youngs_modulus_pa"] = e;

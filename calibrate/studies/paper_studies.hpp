@@ -15,6 +15,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibrate/studies/study_progress.hpp"
+
 namespace seedcal {
 
 struct PaperStudyOptions {
@@ -27,7 +29,12 @@ struct PaperStudyOptions {
   std::uint64_t seed = 1;
   std::vector<double> youngs_moduli_pa = {1.65e6, 1.65e7, 1.65e8};  // stiffness
   std::string out_dir;                // scenes write their CSV and pictures below it
+  StudyProgress* progress = nullptr;  // told of every scene's runs (optional)
 };
+
+// Their DEM runs, scene by scene.
+std::vector<PlannedRuns> multicontact_plan(const PaperStudyOptions& o);
+std::vector<PlannedRuns> stiffness_plan(const PaperStudyOptions& o);
 
 nlohmann::json multicontact_study(const PaperStudyOptions& o);
 nlohmann::json stiffness_study(const PaperStudyOptions& o);

@@ -34,6 +34,7 @@ nlohmann::json run_row(const TradeoffOptions& o, const std::string& set, const s
     return {{"set", set}, {"index", sample_stats({})}, {"cpu_seconds_per_run", nullptr}, {"steps_per_run", nullptr},
             {"dt_s", nullptr}, {"status", "refused"}, {"failure", {{"message", e.what()}}}};
   }
+  if (o.progress) o.progress->scene_done(o.scene, sets, m);
   if (metric.empty()) metric = m.value("index_key", "");
   nlohmann::json row = {{"set", set}, {"index", sample_stats(per_run(m, metric))},
                         {"cpu_seconds_per_run", sample_stats(per_run(m, "cpu_seconds"))["mean"]},
@@ -75,6 +76,36 @@ void compare(nlohmann::json& sweep, std::size_t reference, double tolerance) {
 
 }  // namespace
 
+namespace {
+
+std::string fraction_set(double f) {
+  char set[64];
+  std::snprintf(set, sizeof set, "rayleigh_fraction=%.17g", f);
+  return set;
+}
+
+std::string modulus_set(const std::string& material, double e) {
+  char set[128];
+  std::snprintf(set, sizeof set, "materials.%s.youngs_modulus_pa=%.17g", material.c_str(), e);
+  return set;
+}
+
+}  // namespace
+
+std::vector<PlannedRuns> tradeoff_plan(const TradeoffOptions& o) {
+  std::vector<PlannedRuns> plan;
+  // The first row of each sweep is its reference: a setting refused there is bad input; a later
+  // one is recorded as refused (run_row).
+  auto row = [&](const std::string& set, bool reference) {
+    std::vector<std::string> sets = o.sets;
+    sets.push_back(set);
+    plan.push_back({set, o.scene, sets, o.repeats, !reference});
+  };
+  for (std::size_t i = 0; i < o.rayleigh_fractions.size(); ++i) row(fraction_set(o.rayleigh_fractions[i]), i == 0);
+  for (std::size_t i = 0; i < o.youngs_moduli_pa.size(); ++i) row(modulus_set(o.material, o.youngs_moduli_pa[i]), i == 0);
+  return plan;
+}
+
 nlohmann::json tradeoff_study(const TradeoffOptions& o) {
   // The scene as it stands (overrides applied): its own step fraction and modulus decide whether
   // the modulus sweep's reference row is a row the step sweep has already run.
@@ -100,8 +131,8 @@ nlohmann::json tradeoff_study(const TradeoffOptions& o) {
   std::vector<double> fractions = o.rayleigh_fractions;
   std::sort(fractions.begin(), fractions.end());
   for (const double f : fractions) {
-    char set[64], name[64];
-    std::snprintf(set, sizeof set, "rayleigh_fraction=%.17g", f);
+    const std::string set = fraction_set(f);
+    char name[64];
     std::snprintf(name, sizeof name, "rayleigh_fraction_%.3g", f);
     auto row = run_row(o, set, name, metric, dt["rows"].empty());
     row["value"] = f;
@@ -112,8 +143,8 @@ nlohmann::json tradeoff_study(const TradeoffOptions& o) {
   std::vector<double> moduli = o.youngs_moduli_pa;
   std::sort(moduli.rbegin(), moduli.rend());
   for (const double e : moduli) {
-    char set[128], name[64];
-    std::snprintf(set, sizeof set, "materials.%s.youngs_modulus_pa=%.17g", o.material.c_str(), e);
+    const std::string set = modulus_set(o.material, e);
+    char name[64];
     std::snprintf(name, sizeof name, "youngs_modulus_%.3g", e);
     nlohmann::json row;
     const nlohmann::json* same = nullptr;  // the step sweep's row at the scene's own step and modulus

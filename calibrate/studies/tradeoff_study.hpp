@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibrate/studies/study_progress.hpp"
+
 namespace seedcal {
 
 struct TradeoffOptions {
@@ -29,9 +31,13 @@ struct TradeoffOptions {
   int jobs = 1;                       // a row's repeats at once (one thread each when > 1)
   std::uint64_t seed = 1;
   std::string out_dir;                // scenes write their CSV and pictures below it
+  StudyProgress* progress = nullptr;  // told of every row's runs (optional)
 };
 
 nlohmann::json tradeoff_study(const TradeoffOptions& o);
+// Its DEM runs, row by row (the modulus sweep's row at the scene's own step and modulus, which
+// reuses the step sweep's runs, included: a plan before any run cannot know it is reused).
+std::vector<PlannedRuns> tradeoff_plan(const TradeoffOptions& o);
 
 // The rows of both sweeps as CSV (header first).
 std::string tradeoff_csv(const nlohmann::json& study);

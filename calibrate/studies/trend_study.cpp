@@ -51,6 +51,28 @@ double pooled_sd(const std::vector<double>& a, const std::vector<double>& b) {
   return std::sqrt((ss(a) + ss(b)) / dof);
 }
 
+namespace {
+
+std::string level_set(const std::string& key, double level) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "%s=%.17g", key.c_str(), level);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<PlannedRuns> trend_plan(const TrendOptions& o) {
+  std::vector<PlannedRuns> plan;
+  for (const double level : o.levels) {
+    std::vector<std::string> sets = o.sets;
+    sets.push_back(level_set(o.key, level));
+    char label[256];
+    std::snprintf(label, sizeof label, "%s=%.6g", o.key.c_str(), level);
+    plan.push_back({label, o.scene, sets, o.repeats});
+  }
+  return plan;
+}
+
 nlohmann::json trend_study(const TrendOptions& o) {
   if (o.levels.size() < 2) throw InputError("--levels: give at least two values of " + o.key);
   if (o.expect != "rise" && o.expect != "fall")
@@ -70,14 +92,15 @@ nlohmann::json trend_study(const TrendOptions& o) {
   const std::size_t n = o.levels.size();
   std::vector<std::string> set(n), name(n);
   std::vector<SceneFile> scene(n);  // read once per level; its runs only read it
+  std::vector<std::vector<std::string>> scene_sets(n);
   for (std::size_t i = 0; i < n; ++i) {
-    char buf[256], dir[64];
-    std::snprintf(buf, sizeof buf, "%s=%.17g", o.key.c_str(), o.levels[i]);
+    char dir[64];
     std::snprintf(dir, sizeof dir, "level_%zu_%.4g", i, o.levels[i]);
-    set[i] = buf;
+    set[i] = level_set(o.key, o.levels[i]);
     name[i] = dir;
     std::vector<std::string> sets = o.sets;
     sets.push_back(set[i]);
+    scene_sets[i] = sets;
     // Every level is checked before any runs: a bad key or value (the scene's own checks, exit 2)
     // at the last level is reported now, not after the other levels' simulations.
     scene[i] = load_scene_file(o.scene, sets);
@@ -96,6 +119,7 @@ nlohmann::json trend_study(const TrendOptions& o) {
     if (r > first_failed[i].load()) return;  // after a failed run: not needed
     const std::string dir = o.out_dir.empty() || r > 0 ? std::string() : o.out_dir + "/scenes/" + name[i];
     run[t] = run_scene(scene[i], o.threads, o.seed + r, 1, dir);
+    if (o.progress) o.progress->scene_done(o.scene, scene_sets[i], run[t]);
     if (run[t].value("status", "ok") != "ok") lower_to(first_failed[i], r);
   });
   for (const std::exception_ptr& e : errors)

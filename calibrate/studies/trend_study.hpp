@@ -14,6 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "calibrate/studies/study_progress.hpp"
+
 namespace seedcal {
 
 struct TrendOptions {
@@ -29,7 +31,11 @@ struct TrendOptions {
   int jobs = 1;                    // runs (one level, one seed) simulated at once, one thread each
   std::uint64_t seed = 1;
   std::string out_dir;             // scenes write their CSV and pictures below it
+  StudyProgress* progress = nullptr;  // told of every run (optional)
 };
+
+// Its DEM runs, level by level.
+std::vector<PlannedRuns> trend_plan(const TrendOptions& o);
 
 // Pooled sample sd of two samples (NaN with fewer than two values in all).
 double pooled_sd(const std::vector<double>& a, const std::vector<double>& b);

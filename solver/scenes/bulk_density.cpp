@@ -8,6 +8,33 @@
 
 namespace seedcal {
 
+namespace {
+
+// Batches of the pour, each given this long to fall and make room for the next.
+constexpr int kPourBatches = 20;
+constexpr double kPourBatchInterval_s = 0.15;
+
+}  // namespace
+
+RunPlan plan_bulk_density(const BulkDensitySpec& spec) {
+  const Vec3 c = spec.container_m;
+  const double collar = spec.collar_fraction * c.z();
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  const double pour_kg = spec.overfill * c.x() * c.y() * c.z() * rho * 0.62;
+  RunPlan p;
+  p.dt_s = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * (c.z() + collar)));
+  p.body = spec.seeds.body;
+  p.physics = spec.physics;
+  p.seeds = seeds_in_mass(spec.seeds, pour_kg);
+  p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
+  const double region_m3 = c.x() * c.y() * (0.7 * c.z() + collar);
+  p.phases.push_back({"pour", pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+                      0.5 * p.spheres, true});
+  p.phases.push_back({"settle", settle_time_s(c.z() + collar, g, spec.max_time_s), p.spheres, true});
+  return p;
+}
+
 BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
   const double cpu0 = run_cpu_seconds(spec.threads);
@@ -38,14 +65,14 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   fs.region.lo_m = Vec3(0.0, 0.0, 0.3 * c.z());
   fs.region.hi_m = Vec3(c.x(), c.y(), c.z() + collar);
   double poured = 0.0;
-  for (int batch = 0; batch < 20 && poured < fs.total_mass_kg; ++batch) {
+  for (int batch = 0; batch < kPourBatches && poured < fs.total_mass_kg; ++batch) {
     FactorySpec b = fs;
     b.total_mass_kg = fs.total_mass_kg - poured;
     b.max_attempts = 200000;
     const FactoryResult r = insert_particles(sim, b);
     poured += r.mass_kg;
     if (r.placed == 0) break;
-    if (!run_for(sim, 0.15)) break;  // let the batch fall and make room
+    if (!run_for(sim, kPourBatchInterval_s)) break;  // let the batch fall and make room
     // Later batches go above what is already there.
     double top = 0.0;
     for (std::size_t i = 0; i < sim.spheres().size(); ++i)

@@ -9,7 +9,7 @@
 // solid fraction of any random seed packing, ~0.5, so overfill 1 leaves ~25 % excess), settled to a
 // kinetic-energy threshold, then struck off: a seed counts as inside when its centre of mass is
 // below the rim plane (by centroid; the by-volume alternative differs by a fraction of a seed layer).
-#include "solver/scenes/seed_bed.hpp"
+#include "solver/scenes/run_plan.hpp"
 
 namespace seedcal {
 
@@ -40,5 +40,7 @@ struct BulkDensityResult {
 };
 
 BulkDensityResult run_bulk_density(const BulkDensitySpec& spec);
+// What a run of `spec` will simulate (run_plan.hpp).
+RunPlan plan_bulk_density(const BulkDensitySpec& spec);
 
 }  // namespace seedcal

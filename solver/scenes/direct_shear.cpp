@@ -24,6 +24,8 @@ namespace {
 constexpr double kPourSolidFraction = 0.62;
 constexpr int kPourBatches = 10;
 constexpr double kPourBatchInterval_s = 0.1;
+// The poured seeds settle for at most this long before the specimen is formed.
+constexpr double kSettleMaxTime_s = 1.0;
 // The servo cap starts this far above the highest seed.
 constexpr double kCapStartClearance_m = 0.0005;
 // The cap's radial clearance in the upper ring's bore and its thickness (only its lower face
@@ -85,7 +87,7 @@ double form_specimen(Simulation& sim, const DirectShearSpec& spec) {
   fs.region.height_m = 0.5 * H + spec.pour_height_factor * H;
   pour_seeds(sim, fs, area * H * rho * kPourSolidFraction, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
-  sc.max_time_s = 1.0;
+  sc.max_time_s = kSettleMaxTime_s;
   sc.check_interval_s = 0.005;
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   double mass = 0.0;
@@ -251,6 +253,33 @@ std::string curve_shape(const std::vector<ShearSample>& curve, double window_m) 
 }
 
 }  // namespace
+
+RunPlan plan_direct_shear(const DirectShearSpec& spec) {
+  const double R = 0.5 * spec.diameter_m, H = spec.sample_height_m;
+  const double area = std::numbers::pi * R * R;
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double guide = spec.pour_height_factor * H;
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  const double pour_kg = area * H * rho * kPourSolidFraction;
+  const auto per_seed = static_cast<double>(spec.seeds.body.spheres.size());
+  RunPlan p;
+  p.dt_s = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * (H + guide)));
+  p.body = spec.seeds.body;
+  p.physics = spec.physics;
+  p.seeds = seeds_in_mass(spec.seeds, pour_kg);
+  p.spheres = p.seeds * per_seed;
+  // The specimen: weighed in, or levelled at a loose random packing's solid fraction (about 0.55).
+  const double specimen_kg = spec.sample_density_kg_m3 > 0.0 ? spec.sample_density_kg_m3 * area * H : 0.55 * rho * area * H;
+  const double specimen = std::min(p.seeds, seeds_in_mass(spec.seeds, specimen_kg)) * per_seed;
+  const double region_m3 = area * (0.5 * H + guide);
+  p.phases.push_back({"pour", pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+                      0.5 * p.spheres, true});
+  p.phases.push_back({"settle", settle_time_s(H + guide, g, kSettleMaxTime_s), p.spheres, true});
+  // The cap closes its start clearance and the bed's response to the stress dies out.
+  p.phases.push_back({"consolidate", settle_time_s(0.0, g, spec.consolidation_max_time_s), specimen, true});
+  p.phases.push_back({"shear", spec.shear_displacement_m / spec.shear_speed_m_s, specimen, false});
+  return p;
+}
 
 DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();

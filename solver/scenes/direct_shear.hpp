@@ -29,7 +29,7 @@
 #include <array>
 #include <string>
 
-#include "solver/scenes/seed_bed.hpp"
+#include "solver/scenes/run_plan.hpp"
 
 namespace seedcal {
 
@@ -111,5 +111,7 @@ struct DirectShearResult {
 };
 
 DirectShearResult run_direct_shear(const DirectShearSpec& spec);
+// What a run of `spec` will simulate (run_plan.hpp).
+RunPlan plan_direct_shear(const DirectShearSpec& spec);
 
 }  // namespace seedcal

@@ -61,6 +61,37 @@ double wall_layer_speed_ratio(const BodyState& bodies, double radius_m, double l
   return wall > 0.0 ? moved / wall : 0.0;
 }
 
+namespace {
+
+// The fill is poured in up to 10 batches 0.15 s apart and settles for at most 1 s before the turn.
+constexpr int kPourBatches = 10;
+constexpr double kPourBatchInterval_s = 0.15;
+constexpr double kFillSettleMaxTime_s = 1.0;
+
+}  // namespace
+
+RunPlan plan_drum(const DrumSpec& spec) {
+  const double R = 0.5 * spec.diameter_m, D = spec.depth_m;
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double w = spec.speed_rpm * 2.0 * std::numbers::pi / 60.0;
+  const double mass = spec.filling_rate * std::numbers::pi * R * R * D * spec.bulk_density_kg_m3;
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  RunPlan p;
+  p.dt_s = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * R) + w * R);
+  p.body = spec.seeds.body;
+  p.physics = spec.physics;
+  p.seeds = seeds_in_mass(spec.seeds, mass);
+  p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
+  const double region_m3 = 1.5 * R * D * 1.35 * R;
+  p.phases.push_back({"pour", pour_time_s(mass, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+                      0.5 * p.spheres, true});
+  p.phases.push_back({"settle", settle_time_s(1.35 * R, g, kFillSettleMaxTime_s), p.spheres, true});
+  double last = 0.0;
+  for (double t : spec.frame_times_s) last = std::max(last, t);
+  p.phases.push_back({"turn", last, p.spheres, false});
+  return p;
+}
+
 DrumResult run_drum(const DrumSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
   const double cpu0 = run_cpu_seconds(spec.threads);
@@ -115,9 +146,9 @@ DrumResult run_drum(const DrumSpec& spec) {
   fs.scale = spec.seeds.scale;
   fs.region.lo_m = Vec3(-0.75 * R, -0.5 * D, -0.75 * R);
   fs.region.hi_m = Vec3(0.75 * R, 0.5 * D, 0.6 * R);
-  pour_seeds(sim, fs, mass, 10, 0.15);
+  pour_seeds(sim, fs, mass, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
-  sc.max_time_s = 1.0;
+  sc.max_time_s = kFillSettleMaxTime_s;
   sc.check_interval_s = 0.005;
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();

@@ -13,7 +13,7 @@
 // columns half a seed wide, restricted to the central `fit_width_fraction` of the bed's chord,
 // is fitted with a line; the angle is atan(|slope|).
 #include "solver/scenes/line_fit.hpp"
-#include "solver/scenes/seed_bed.hpp"
+#include "solver/scenes/run_plan.hpp"
 
 namespace seedcal {
 
@@ -87,5 +87,7 @@ double wall_layer_speed_ratio(const BodyState& bodies, double radius_m, double l
                               double omega_rad_s);
 
 DrumResult run_drum(const DrumSpec& spec);
+// What a run of `spec` will simulate (run_plan.hpp).
+RunPlan plan_drum(const DrumSpec& spec);
 
 }  // namespace seedcal

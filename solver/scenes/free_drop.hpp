@@ -3,7 +3,7 @@
 // individual-particle test, 150 mm onto steel). It measures the rebound height of the centre of
 // mass and the number of sphere-level contact points during the first impact, and stops at the
 // apex of the first rebound.
-#include "solver/scenes/scene_common.hpp"
+#include "solver/scenes/run_plan.hpp"
 #include "solver/sim/body_def.hpp"
 
 namespace seedcal {
@@ -38,6 +38,8 @@ struct FreeDropResult {
 };
 
 FreeDropResult run_free_drop(const FreeDropSpec& spec);
+// What a run of `spec` will simulate (run_plan.hpp).
+RunPlan plan_free_drop(const FreeDropSpec& spec);
 
 }  // namespace seedcal
 

@@ -5,6 +5,39 @@
 #include <cmath>
 
 namespace seedcal {
+namespace {
+
+// The stable limit for the scene's bodies at the expected impact speed: the largest relative speed
+// between two bodies or a body and a wall, plus what gravity adds over the run.
+double impact_time_step(const ImpactSpec& spec, SimulationOptions opt) {
+  opt.dt_s = 1.0;
+  Simulation probe(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
+  for (const BodyDef& b : spec.bodies) probe.add_body(b);
+  double v_exp = 0.0;
+  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
+    v_exp = std::max(v_exp, spec.bodies[i].velocity_m_s.norm());
+    for (std::size_t j = i + 1; j < spec.bodies.size(); ++j)
+      v_exp = std::max(v_exp, (spec.bodies[i].velocity_m_s - spec.bodies[j].velocity_m_s).norm());
+  }
+  v_exp += spec.physics.gravity_m_s2.norm() * spec.duration_s;
+  return choose_time_step(spec.time_step, time_step_limits(probe, v_exp));
+}
+
+}  // namespace
+
+RunPlan plan_impact(const ImpactSpec& spec) {
+  SimulationOptions opt;
+  opt.contact = spec.physics.contact;
+  opt.gravity_m_s2 = spec.physics.gravity_m_s2;
+  RunPlan p;
+  p.dt_s = impact_time_step(spec, opt);
+  p.seeds = static_cast<double>(spec.bodies.size());
+  for (const BodyDef& b : spec.bodies) p.spheres += static_cast<double>(b.spheres.size());
+  if (!spec.bodies.empty()) p.body = spec.bodies.front();
+  p.physics = spec.physics;
+  p.phases.push_back({"impact", spec.duration_s, p.spheres, false});
+  return p;
+}
 
 ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   const auto wall_t0 = std::chrono::steady_clock::now();
@@ -16,20 +49,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   opt.threads = spec.threads;
   opt.seed = spec.seed;
   opt.track_body_contacts = true;
-  opt.dt_s = 1.0;  // replaced below, once the world exists and the limits are known
-  Simulation probe(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);
-  for (const BodyDef& b : spec.bodies) probe.add_body(b);
-
-  // Expected impact speed: the largest relative speed between two bodies or a body and a wall,
-  // plus what gravity adds over the run.
-  double v_exp = 0.0;
-  for (std::size_t i = 0; i < spec.bodies.size(); ++i) {
-    v_exp = std::max(v_exp, spec.bodies[i].velocity_m_s.norm());
-    for (std::size_t j = i + 1; j < spec.bodies.size(); ++j)
-      v_exp = std::max(v_exp, (spec.bodies[i].velocity_m_s - spec.bodies[j].velocity_m_s).norm());
-  }
-  v_exp += spec.physics.gravity_m_s2.norm() * spec.duration_s;
-  opt.dt_s = choose_time_step(spec.time_step, time_step_limits(probe, v_exp));
+  opt.dt_s = impact_time_step(spec, opt);
   opt.observer = spec.observer;
 
   Simulation sim(InteractionTable(spec.physics.materials, spec.physics.interactions), opt);

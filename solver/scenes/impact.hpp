@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "solver/scenes/scene_common.hpp"
+#include "solver/scenes/run_plan.hpp"
 #include "solver/sim/body_def.hpp"
 
 namespace seedcal {
@@ -47,5 +47,7 @@ struct ImpactResult {
 using StepObserver = std::function<void(const Simulation&)>;
 
 ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer = {});
+// What a run of `spec` will simulate (run_plan.hpp).
+RunPlan plan_impact(const ImpactSpec& spec);
 
 }  // namespace seedcal

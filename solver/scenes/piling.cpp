@@ -11,6 +11,20 @@
 #include "solver/walls/motion_laws.hpp"
 
 namespace seedcal {
+namespace {
+
+// The fill is poured in up to 20 batches 0.15 s apart and settles in the tube for at most 1.5 s.
+constexpr int kPourBatches = 20;
+constexpr double kPourBatchInterval_s = 0.15;
+constexpr double kFillSettleMaxTime_s = 1.5;
+// The tube rises at most this far above the fill's top.
+constexpr double kLiftBeyondTop_m = 0.02;
+// The heap is given at least this long to run out before it may count as settled.
+constexpr double kHeapMinTime_s = 0.1;
+// The slope the plan assumes for the heap (plan_piling).
+constexpr double kPlanAngleOfRepose_rad = 30.0 * std::numbers::pi / 180.0;
+
+}  // namespace
 
 HeapMeasurement measure_heap(const std::vector<std::pair<Vec3, double>>& spheres,
                              const std::vector<Vec3>& body_centres, double seed_size_m, int azimuths,
@@ -75,6 +89,39 @@ HeapMeasurement measure_heap(const std::vector<std::pair<Vec3, double>>& spheres
   return res;
 }
 
+RunPlan plan_piling(const PilingSpec& spec) {
+  const double R = 0.5 * spec.tube_diameter_m;
+  const double tube_h = 2.0 * spec.fill_height_m;
+  const double g = spec.physics.gravity_m_s2.norm();
+  const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
+  const double pour_kg = std::numbers::pi * R * R * spec.fill_height_m * rho * 0.55;
+  RunPlan p;
+  p.dt_s = seed_time_step(spec.physics, spec.time_step, spec.seeds, std::sqrt(2.0 * g * tube_h));
+  p.body = spec.seeds.body;
+  p.physics = spec.physics;
+  p.seeds = seeds_in_mass(spec.seeds, pour_kg);
+  p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
+  const double region_m3 = std::numbers::pi * R * R * (tube_h - 0.3 * spec.fill_height_m);
+  p.phases.push_back({"pour", pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+                      0.5 * p.spheres, true});
+  p.phases.push_back({"settle", settle_time_s(tube_h, g, kFillSettleMaxTime_s), p.spheres, true});
+  // The lift stops once the rim clears the heap's top by a seed size. The fill (volume V) runs out
+  // into a cone of slope theta, whose height is (3 V tan^2 theta / pi)^(1/3); theta is taken as
+  // 30 deg, about the static angle of repose of grain seeds (31.2 to 31.8 deg for the paper's three
+  // maize varieties, section 3.1). Never beyond the fill's top and 20 mm, where the run stops lifting.
+  double seed_size = 0.0;
+  for (const SphereDef& s : spec.seeds.body.spheres) seed_size = std::max(seed_size, 2.0 * (s.offset_m.norm() + s.radius_m));
+  const double fill_m3 = std::numbers::pi * R * R * spec.fill_height_m;
+  const double tan2 = std::pow(std::tan(kPlanAngleOfRepose_rad), 2);
+  const double cone_m = std::cbrt(3.0 * fill_m3 * tan2 / std::numbers::pi);
+  const double lift_m = std::min(cone_m + seed_size * spec.seeds.scale.mean, spec.fill_height_m + kLiftBeyondTop_m);
+  p.phases.push_back({"lift", lift_m / spec.lift_speed_m_s, p.spheres, true});
+  // The heap runs out and comes to rest: the fall of the fill's top and the bed's collisions.
+  p.phases.push_back({"heap", std::max(kHeapMinTime_s, settle_time_s(spec.fill_height_m, g, spec.max_time_s)),
+                      p.spheres, true});
+  return p;
+}
+
 PilingResult run_piling(const PilingSpec& spec) {
   const auto wall_t0 = std::chrono::steady_clock::now();
   const double cpu0 = run_cpu_seconds(spec.threads);
@@ -108,9 +155,9 @@ PilingResult run_piling(const PilingSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.3 * spec.fill_height_m);
   fs.region.height_m = tube_h - 0.3 * spec.fill_height_m;
-  pour_seeds(sim, fs, pour_kg, 20, 0.15);
+  pour_seeds(sim, fs, pour_kg, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
-  sc.max_time_s = 1.5;
+  sc.max_time_s = kFillSettleMaxTime_s;
   sc.check_interval_s = 0.005;
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();
@@ -125,7 +172,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   for (const SphereDef& s : spec.seeds.body.spheres)
     seed_size = std::max(seed_size, 2.0 * (s.offset_m.norm() + s.radius_m));
   seed_size *= spec.seeds.scale.mean;
-  const double lift = top + 0.02;
+  const double lift = top + kLiftBeyondTop_m;
   const double t0 = sim.time_s();
   sim.walls()[tube_index].motion = std::make_shared<Schedule>(
       std::vector<Schedule::Segment>{{t0, t0 + lift / spec.lift_speed_m_s, Vec3(0, 0, spec.lift_speed_m_s)}});
@@ -142,7 +189,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   SettleResult heap;
   if (sim.failure().status == RunStatus::ok) {
     sc.max_time_s = spec.max_time_s;
-    sc.min_time_s = 0.1;
+    sc.min_time_s = kHeapMinTime_s;
     heap = run_until_settled(sim, sc);
   }
   res.run.stop_reason = sim.failure().status != RunStatus::ok

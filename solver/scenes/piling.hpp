@@ -12,7 +12,7 @@
 // the plate (z <= one seed size): seeds that ran out alone over the plate are not the heap's
 // side. Reported: the mean over the sectors (both sides of every diametral cut) and its sd.
 #include "solver/scenes/line_fit.hpp"
-#include "solver/scenes/seed_bed.hpp"
+#include "solver/scenes/run_plan.hpp"
 
 namespace seedcal {
 
@@ -65,5 +65,7 @@ HeapMeasurement measure_heap(const std::vector<std::pair<Vec3, double>>& spheres
                              double window_lo, double window_hi);
 
 PilingResult run_piling(const PilingSpec& spec);
+// What a run of `spec` will simulate (run_plan.hpp).
+RunPlan plan_piling(const PilingSpec& spec);
 
 }  // namespace seedcal

@@ -37,9 +37,17 @@ Simulation falling_spheres(double dt_s, const FrameObserver& observer) {
 }
 
 FrameObserver recorder(double interval_s, std::vector<Frame>& frames) {
-  return {interval_s, [&frames](const Simulation& s) {
-            frames.push_back({s.time_s(), s.step_count(), s.spheres().size()});
-          }};
+  FrameObserver o;
+  o.interval_s = interval_s;
+  o.on_frame = [&frames](const Simulation& s) { frames.push_back({s.time_s(), s.step_count(), s.spheres().size()}); };
+  return o;
+}
+
+FrameObserver progress_recorder(double interval_s, std::vector<Frame>& calls) {
+  FrameObserver o;
+  o.progress_interval_s = interval_s;
+  o.on_progress = [&calls](const Simulation& s) { calls.push_back({s.time_s(), s.step_count(), s.spheres().size()}); };
+  return o;
 }
 
 TEST(FrameObserver, FramesAtStartEveryIntervalAndEnd) {
@@ -102,6 +110,31 @@ TEST(FrameObserver, TakesTheStateAGuardStoppedAt) {
   EXPECT_EQ(frames[1].step, 1u);
   EXPECT_FALSE(sim.final_check());
   EXPECT_EQ(frames.size(), 2u);
+}
+
+// Progress calls come every interval of simulated time (the first after one interval), never at the
+// end or on a failure, and leave the run's bits alone.
+TEST(FrameObserver, ProgressEveryIntervalWithoutChangingTheRun) {
+  std::vector<Frame> calls;
+  const double dt = 1e-5, interval = 0.002;
+  Simulation observed = falling_spheres(dt, progress_recorder(interval, calls));
+  Simulation plain = falling_spheres(dt, {});
+  ASSERT_TRUE(observed.run(10000));
+  ASSERT_TRUE(plain.run(10000));
+  ASSERT_TRUE(observed.final_check());
+  // t = 2, 4, ..., 98 ms: each at the first step at or after the previous call plus the interval,
+  // so at most one step late each time (49 calls, or 48 if the late steps add up to an interval).
+  ASSERT_GE(calls.size(), 48u);
+  ASSERT_LE(calls.size(), 49u);
+  for (std::size_t k = 1; k < calls.size(); ++k) {
+    EXPECT_GE(calls[k].time_s - calls[k - 1].time_s, interval - 1e-12) << k;
+    EXPECT_LE(calls[k].time_s - calls[k - 1].time_s, interval + dt + 1e-12) << k;
+  }
+  const auto& a = observed.bodies().position_m;
+  const auto& b = plain.bodies().position_m;
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)), 0);
+  std::vector<Frame> none;
+  EXPECT_THROW(falling_spheres(dt, progress_recorder(0.0, none)), std::invalid_argument);
 }
 
 TEST(FrameObserver, NeedsAPositiveInterval) {

@@ -49,6 +49,11 @@ Simulation::Simulation(InteractionTable table, SimulationOptions options)
       throw std::invalid_argument("Simulation: a frame observer needs interval_s > 0");
     next_frame_s_ = 0.0;
   }
+  if (options_.observer.on_progress) {
+    if (!(options_.observer.progress_interval_s > 0.0))
+      throw std::invalid_argument("Simulation: a progress observer needs progress_interval_s > 0");
+    next_progress_s_ = options_.observer.progress_interval_s;
+  }
   bodies_.first_sphere.push_back(0);
 }
 
@@ -447,6 +452,10 @@ bool Simulation::step() {
   if (failure_.status != RunStatus::ok) return false;
   ensure_ready();
   if (time_s_ >= next_frame_s_) emit_frame();
+  if (time_s_ >= next_progress_s_) {
+    next_progress_s_ = time_s_ + options_.observer.progress_interval_s;
+    options_.observer.on_progress(*this);
+  }
   const double dt = options_.dt_s;
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};

@@ -33,9 +33,14 @@ class Simulation;
 // twice for the same step. It sees the simulation read-only, so the run is the same with or
 // without it; unset (no on_frame), it costs one comparison per step. One simulation per observer:
 // a scene that runs several passes the observer to the one it measures.
+//
+// Progress (optional, for a status line, never for output): on_progress(sim) at the start of the
+// first step at or after each multiple of progress_interval_s of simulated time; read-only too.
 struct FrameObserver {
   double interval_s = 0.0;  // > 0 when on_frame is set
   std::function<void(const Simulation&)> on_frame;
+  double progress_interval_s = 0.0;  // > 0 when on_progress is set
+  std::function<void(const Simulation&)> on_progress;
 };
 
 struct SimulationOptions {
@@ -257,6 +262,7 @@ class Simulation {
   std::uint64_t step_ = 0;
   // Time of the next frame (+inf without an observer) and the step of the last frame taken.
   double next_frame_s_ = std::numeric_limits<double>::infinity();
+  double next_progress_s_ = std::numeric_limits<double>::infinity();
   std::uint64_t last_frame_step_ = std::numeric_limits<std::uint64_t>::max();  // none yet
   double skin_m_ = 0.0;
   double reference_energy_j_ = -1.0;  // < 0: recompute

@@ -78,6 +78,17 @@ CliResult calibrate_study(const std::string& dir, const std::string& study) {
   return run_cli("calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 2 --threads 1");
 }
 
+// The estimate's total: "plan: in all ~N DEM runs (at most M), ...".
+std::pair<int, int> planned_runs(const std::string& text) {
+  const std::string key = "plan: in all ~";
+  const std::size_t at = text.find(key);
+  EXPECT_NE(at, std::string::npos) << text;
+  if (at == std::string::npos) return {0, 0};
+  const int n = std::stoi(text.substr(at + key.size()));
+  const std::size_t most = text.find("(at most ", at);
+  return {n, most == std::string::npos ? n : std::stoi(text.substr(most + 9))};
+}
+
 TEST(CalibrateCli, RecoversYoungsModulusFromContactTime) {
   const std::string dir = scratch_dir("calibrate-one");
   const double e0 = 3.3e10;
@@ -134,7 +145,11 @@ TEST(CalibrateCli, SecondRunOnALockedDirectoryExitsTwo) {
   const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
   write_text(dir + "/study.toml", study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.003));
   const std::string cmd = seedcal_binary() + " calibrate " + dir + "/study.toml --out " + dir + "/out --jobs 1 --threads 1";
-  std::system(("(" + cmd + " > " + dir + "/first.log 2>&1; echo $? > " + dir + "/first.rc) &").c_str());
+  // The exit status is written aside and renamed, so first.rc exists only once it holds the number
+  // (a plain redirection creates the file empty before echo writes it).
+  std::system(("(" + cmd + " > " + dir + "/first.log 2>&1; echo $? > " + dir + "/first.rc.part; mv " + dir +
+               "/first.rc.part " + dir + "/first.rc) &")
+                  .c_str());
   // The first run takes the lock before it reads or writes the store.
   for (int k = 0; k < 3000 && !std::filesystem::exists(dir + "/out/calibrate.lock") &&
                   !std::filesystem::exists(dir + "/first.rc");
@@ -368,6 +383,42 @@ TEST(CalibrateCli, VerifiesAndSelectsModels) {
   const std::string log = read_text(dir + "/out/calibrate.log");
   EXPECT_NE(log.find("verify: 1 of 2 models verified, provisional choice \"dt-2e-8\""), std::string::npos) << log;
   EXPECT_LT(log.find("verify: 1 of 2 models verified"), log.find("verify 6/"));  // before model 2's first run ends
+  // The estimate said before the first run counts the runs the study made: exactly for the
+  // verification (its plan is fixed), and the calibration within what the plan allows (its
+  // expected count to its budget, "at most").
+  const auto [planned, at_most] = planned_runs(log);
+  EXPECT_LE(planned, at_most) << log;
+  EXPECT_LE(s["evaluations_total"].get<int>(), at_most) << log;
+  EXPECT_GE(s["evaluations_total"].get<int>(), planned / 2) << log;
+  EXPECT_NE(log.find("plan: verification: 10 DEM runs"), std::string::npos) << log;
+  std::filesystem::remove_all(dir);
+}
+
+// --dry-run prints the plan (a line per test and model, a line per stage, the total) and runs
+// nothing: no study directory, no store, exit 0.
+TEST(CalibrateCli, DryRunPrintsThePlanAndRunsNothing) {
+  const std::string dir = scratch_dir("calibrate-dry-run");
+  const auto m = impact_metrics(3.3e10, 2800.0, dir + "/truth");
+  write_text(dir + "/study.toml", verify_study_text(m));
+  const auto r = run_cli("calibrate " + dir + "/study.toml --dry-run --jobs 2 --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (const char* line : {"plan: test \"contact_duration_s\" under model \"dt-2e-8\" (impact)",
+                           "plan: test \"overlap\" under model \"dt-2e-9\" (impact)", "plan: screening: ",
+                           "plan: surrogate: ", "plan: confirmation: ", "plan: verification: 10 DEM runs",
+                           "on 2 slots"})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  const auto [planned, at_most] = planned_runs(r.output);
+  EXPECT_GT(planned, 10);  // the calibration's screening and design come on top of verification
+  EXPECT_LE(planned, at_most);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  // With --out it still runs nothing, and the directory is not made.
+  const auto again = run_cli("calibrate " + dir + "/study.toml --dry-run --out " + dir + "/out --threads 1");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
+  // Without --dry-run, --out is required.
+  const auto no_out = run_cli("calibrate " + dir + "/study.toml --threads 1");
+  EXPECT_EQ(no_out.exit_code, 2) << no_out.output;
+  EXPECT_NE(no_out.output.find("--out"), std::string::npos) << no_out.output;
   std::filesystem::remove_all(dir);
 }
 // A model whose every run of a test with an experiment fails (here the target, at a time step

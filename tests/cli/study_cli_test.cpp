@@ -153,6 +153,26 @@ TEST(StudyCli, TrendConfirmsReboundRisesWithRestitution) {
   std::filesystem::remove_all(dir);
 }
 
+// --dry-run prints a line per level (its runs, the scene's plan and cost) and the total, and
+// runs nothing.
+TEST(StudyCli, TrendDryRunPrintsThePlanAndRunsNothing) {
+  const std::string dir = scratch_dir("study-trend-dry");
+  const auto r = run_cli("study trend --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml" +
+                         " --vary seed_steel.restitution --levels 0.3 0.9 --repeats 3 --dry-run --threads 1 --out " + dir + "/out");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("plan: seed_steel.restitution=0.3, 3 runs (free_drop): 1 seeds"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("plan: seed_steel.restitution=0.9, 3 runs"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("plan: study trend: 6 DEM runs"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/out")) << "a dry run wrote its output directory";
+  // A bad level is still bad input.
+  const auto bad = run_cli("study trend --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml" +
+                           " --vary seed_steel.restitution --levels 0.3 1.5 --dry-run --out " + dir + "/out");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("1.5"), std::string::npos) << bad.output;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(StudyCli, TrendOfAnUnknownKeyIsBadInput) {
   const auto r = run_cli("study trend --scene " + source_dir() + "/data/scenes/jinong1/free_drop.toml" +
                          " --vary seed_steel.restitutio --levels 0.3 0.9 --out " + scratch_dir("study-trend-bad"));

@@ -29,6 +29,15 @@ inline void expect_run_report(const nlohmann::json& j) {
   for (const char* k : {"cpu_seconds", "wall_seconds", "steps", "bodies", "spheres", "stop_reason", "provenance"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["status"], "ok");
+  // Each run's steps against its plan (solver/scenes/run_plan.hpp): `seedcal calibrate` promises a
+  // cost estimate within a factor of 2 of the run (docs/calibrate.md, "Cost before work").
+  const nlohmann::json runs = j.contains("runs") ? j["runs"] : nlohmann::json::array({j});
+  for (const auto& r : runs) {
+    ASSERT_TRUE(r.contains("plan")) << r.dump(1);
+    const double ratio = r["steps"].get<double>() / r["plan"]["steps"].get<double>();
+    EXPECT_GT(ratio, 0.5) << "steps " << r["steps"] << ", planned " << r["plan"].dump();
+    EXPECT_LT(ratio, 2.0) << "steps " << r["steps"] << ", planned " << r["plan"].dump();
+  }
 }
 
 // The scene's raw data and picture exist in its output directory.

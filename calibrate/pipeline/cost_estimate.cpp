@@ -1,0 +1,158 @@
+#include "calibrate/pipeline/cost_estimate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "calibrate/pipeline/evaluation.hpp"
+#include "calibrate/pipeline/pipeline.hpp"
+#include "calibrate/scenes/scene_file.hpp"
+#include "store/errors.hpp"
+#include "solver/scenes/cost_probe.hpp"
+
+namespace seedcal {
+namespace {
+
+// The confirmation takes about three rounds of replicates before it converges or stops.
+constexpr int kConfirmRounds = 3;
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+std::string clock_text(double s) {
+  const long v = std::lround(std::max(0.0, s));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", v / 3600, (v / 60) % 60, v % 60);
+  return buf;
+}
+
+SceneCost RunPricer::price(const SceneFile& scene) {
+  SceneCost c;
+  c.kind = scene.kind;
+  c.plan = plan_scene(scene);
+  double radii = 0.0;
+  for (const SphereDef& sp : c.plan.body.spheres) radii += sp.radius_m;
+  const auto key = std::make_tuple(c.plan.body.spheres.size(), c.plan.body.mass_kg, radii);
+  auto it = probes_.find(key);
+  if (it == probes_.end()) {
+    // A bed for the bulk scenes; one body in flight for a free drop or an impact.
+    const CostProbe p = probe_sphere_step_cost(c.plan.physics, c.plan.body, c.plan.dt_s, threads_, c.plan.seeds > 2.0);
+    probe_cpu_s_ += p.probe_cpu_s;
+    it = probes_.emplace(key, p.cpu_s_per_sphere_step).first;
+  }
+  c.cpu_s_per_sphere_step = it->second;
+  c.cpu_s = c.plan.sphere_steps() * c.cpu_s_per_sphere_step;
+  return c;
+}
+
+std::string describe_scene_cost(const std::string& what, const SceneCost& c) {
+  if (!c.refused.empty()) {
+    std::string why = c.refused;
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    for (char& ch : why)
+      if (ch == '\n') ch = ' ';
+    return "plan: " + what + ": refused by the scene, its runs will fail (priced at 0 CPU s): " + why;
+  }
+  return "plan: " + what + " (" + c.kind + "): " + fmt("%.0f", c.plan.seeds) + " seeds, " +
+         fmt("%.0f", c.plan.spheres) + " spheres, " + fmt("%.3g", c.plan.simulated_s()) + " s simulated at dt " +
+         fmt("%.3g", c.plan.dt_s) + " s (" + fmt("%.3g", c.plan.steps()) + " steps), " +
+         fmt("%.0f", c.cpu_s_per_sphere_step * 1e9) + " ns a sphere-step: ~" + fmt("%.3g", c.cpu_s) +
+         " CPU s a run";
+}
+
+StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
+  StudyCostEstimate e;
+  nlohmann::json nominal = nlohmann::json::object();
+  for (const StudyParameter& p : s.parameters) nominal[p.path] = p.nominal;
+  RunPricer pricer(threads);
+  const int T = static_cast<int>(s.targets.size());
+  // cost[m][t]: one run of scene t under model m.
+  std::vector<std::vector<double>> cost(s.models.size(), std::vector<double>(static_cast<std::size_t>(s.scene_count())));
+  for (std::size_t m = 0; m < s.models.size(); ++m) {
+    for (int t = 0; t < s.scene_count(); ++t) {
+      const StudyTarget& test = s.scene_of(t);
+      SceneCost c;
+      try {
+        c = pricer.price(load_scene_file(test.scene, scene_overrides(s.models[m], test, nominal)));
+      } catch (const InputError& err) {
+        // A model the scene refuses (a time step above the stable limit, say) is the study's to
+        // report run by run, as its runs fail; the estimate names it and goes on.
+        c.kind = test.scene;
+        c.refused = err.what();
+      }
+      c.test = test.name;
+      c.model = s.models[m].name;
+      cost[m][static_cast<std::size_t>(t)] = c.cpu_s;
+      e.scenes.push_back(std::move(c));
+    }
+  }
+  e.probe_cpu_s = pricer.probe_cpu_s();
+  // Calibration: runs of every target (under the first model) at each planned point.
+  double per_point = 0.0;
+  for (int t = 0; t < T; ++t) per_point += cost[0][static_cast<std::size_t>(t)];
+  auto add = [&](const std::string& stage, int points_expected, int points_most, int replicates) {
+    StageRuns r{stage, points_expected * replicates * T, points_most * replicates * T, 0.0};
+    r.cpu_s = points_expected * replicates * per_point;
+    e.stages.push_back(r);
+  };
+  int kept = 0;
+  for (const StudyParameter& p : s.parameters) kept += p.calibrate ? 1 : 0;
+  kept = std::clamp(kept, 2, static_cast<int>(s.parameters.size()));
+  const auto design = static_cast<int>(surrogate_design(s, kept).rows());
+  add("screening", s.screen.runs, s.screen.runs, s.screen.replicates);
+  add("ascent", 0, s.ascent.max_steps, s.screen.replicates);
+  add("surrogate", design, design, s.surrogate.replicates);
+  int before = 0;
+  for (const StageRuns& r : e.stages) before += r.runs;
+  const int confirm_runs = std::max(0, std::min(kConfirmRounds * s.confirm.replicates * T, s.confirm.max_evaluations - before));
+  StageRuns confirm{"confirmation", confirm_runs, std::max(0, s.confirm.max_evaluations - before), 0.0};
+  confirm.cpu_s = T > 0 ? static_cast<double>(confirm_runs) / T * per_point : 0.0;
+  e.stages.push_back(confirm);
+  // Verification: every scene under every model, its replicates each.
+  if (!s.checks.empty() || s.models.size() > 1) {
+    StageRuns verify{"verification", 0, 0, 0.0};
+    for (std::size_t m = 0; m < s.models.size(); ++m)
+      for (int t = 0; t < s.scene_count(); ++t) {
+        const StudyTarget& test = s.scene_of(t);
+        const int reps = test.replicates > 0 && t >= T ? test.replicates : s.verify.replicates;
+        verify.runs += reps;
+        verify.cpu_s += reps * cost[m][static_cast<std::size_t>(t)];
+      }
+    verify.at_most = verify.runs;
+    e.stages.push_back(verify);
+  }
+  for (const StageRuns& r : e.stages) {
+    e.runs += r.runs;
+    e.cpu_s += r.cpu_s;
+  }
+  // The most: the calibration's budget (every run of it a point of every target), then verification.
+  const int calibration_most = std::max(s.confirm.max_evaluations, before);
+  e.runs_at_most = calibration_most + (e.stages.back().stage == "verification" ? e.stages.back().runs : 0);
+  e.cpu_s_at_most = (T > 0 ? static_cast<double>(calibration_most) / T * per_point : 0.0) +
+                    (e.stages.back().stage == "verification" ? e.stages.back().cpu_s : 0.0);
+  return e;
+}
+
+std::vector<std::string> describe_cost(const StudyCostEstimate& e, int slots) {
+  std::vector<std::string> out;
+  for (const SceneCost& c : e.scenes)
+    out.push_back(describe_scene_cost("test \"" + c.test + "\" under model \"" + c.model + "\"", c));
+  for (const StageRuns& r : e.stages) {
+    std::string line = "plan: " + r.stage + ": " + std::to_string(r.runs) + " DEM runs";
+    if (r.at_most != r.runs) line += " (at most " + std::to_string(r.at_most) + ")";
+    out.push_back(line + ", ~" + fmt("%.0f", r.cpu_s) + " CPU s");
+  }
+  const int n = std::max(1, slots);
+  out.push_back("plan: in all ~" + std::to_string(e.runs) + " DEM runs (at most " + std::to_string(e.runs_at_most) +
+                "), ~" + fmt("%.0f", e.cpu_s) + " CPU s (at most " + fmt("%.0f", e.cpu_s_at_most) + "), ~" +
+                clock_text(e.cpu_s / n) + " on " + std::to_string(n) + " slot" + (n > 1 ? "s" : "") +
+                "; measuring this machine took " + fmt("%.2g", e.probe_cpu_s) + " CPU s");
+  return out;
+}
+
+}  // namespace seedcal

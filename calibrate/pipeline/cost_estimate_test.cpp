@@ -1,0 +1,106 @@
+// The cost estimate of `seedcal calibrate --dry-run` (cost_estimate.hpp) on the shipped quick
+// study: its run count follows the study's plan, every scene is priced from its own plan, and the
+// lines say what the command prints. Its agreement with a measured study is in
+// docs/results/cost_estimate.md (a timing, not a test); the plans' agreement with the steps runs
+// take is checked by the regression tests (tests/support/scene_runs.hpp).
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "calibrate/output/run_progress_line.hpp"
+#include "calibrate/pipeline/cost_estimate.hpp"
+#include "calibrate/pipeline/study_config.hpp"
+#include "tests/support/cli.hpp"
+
+namespace seedcal {
+namespace {
+
+const StageRuns& stage(const StudyCostEstimate& e, const std::string& name) {
+  for (const StageRuns& r : e.stages)
+    if (r.stage == name) return r;
+  ADD_FAILURE() << "no stage " << name;
+  static const StageRuns none;
+  return none;
+}
+
+TEST(CostEstimate, QuickStudyRunsFollowItsPlan) {
+  const StudyConfig s = read_study(testing::source_dir() + "/data/studies/jinong1-quick.toml");
+  const StudyCostEstimate e = estimate_study_cost(s, 1);
+  const int targets = static_cast<int>(s.targets.size());
+  // One priced scene per test per model.
+  ASSERT_EQ(e.scenes.size(), s.models.size() * static_cast<std::size_t>(s.scene_count()));
+  for (const SceneCost& c : e.scenes) {
+    SCOPED_TRACE(c.test + " / " + c.model);
+    EXPECT_TRUE(c.refused.empty()) << c.refused;
+    EXPECT_GT(c.plan.seeds, 1.0);
+    EXPECT_GT(c.plan.spheres, c.plan.seeds);  // multi-sphere clumps
+    EXPECT_GT(c.plan.steps(), 0.0);
+    EXPECT_GT(c.cpu_s_per_sphere_step, 0.0);
+    EXPECT_NEAR(c.cpu_s, c.plan.sphere_steps() * c.cpu_s_per_sphere_step, 1e-12 * c.cpu_s);
+  }
+  // The stages as the study file sets them: the screening design with its replicates, no ascent
+  // expected, the verification's every test under every model with its replicates.
+  EXPECT_EQ(stage(e, "screening").runs, s.screen.runs * s.screen.replicates * targets);
+  EXPECT_EQ(stage(e, "ascent").runs, 0);
+  EXPECT_EQ(stage(e, "ascent").at_most, s.ascent.max_steps * s.screen.replicates * targets);
+  int verify = 0;
+  for (std::size_t m = 0; m < s.models.size(); ++m)
+    for (int t = 0; t < s.scene_count(); ++t) {
+      const StudyTarget& test = s.scene_of(t);
+      verify += test.replicates > 0 && t >= targets ? test.replicates : s.verify.replicates;
+    }
+  EXPECT_EQ(stage(e, "verification").runs, verify);
+  int sum = 0;
+  double cpu = 0.0;
+  for (const StageRuns& r : e.stages) {
+    EXPECT_LE(r.runs, r.at_most) << r.stage;
+    sum += r.runs;
+    cpu += r.cpu_s;
+  }
+  EXPECT_EQ(e.runs, sum);
+  EXPECT_NEAR(e.cpu_s, cpu, 1e-9 * cpu);
+  EXPECT_LE(e.runs, e.runs_at_most);
+  EXPECT_LE(e.cpu_s, e.cpu_s_at_most * (1.0 + 1e-12));
+  const auto lines = describe_cost(e, 2);
+  ASSERT_FALSE(lines.empty());
+  EXPECT_NE(lines.back().find("plan: in all ~" + std::to_string(e.runs) + " DEM runs"), std::string::npos)
+      << lines.back();
+  EXPECT_NE(lines.back().find("on 2 slots"), std::string::npos) << lines.back();
+  // A heap of some eight hundred seeds, poured and settled for seconds, costs more than the shear
+  // box's hundred seeds in under a second.
+  double shear = 0.0, heap = 0.0;
+  for (const SceneCost& c : e.scenes) {
+    if (c.kind == "piling") heap = c.cpu_s;
+    if (c.kind == "direct_shear") shear = c.cpu_s;
+  }
+  EXPECT_GT(heap, 10.0 * shear);
+}
+
+TEST(CostEstimate, ARefusedSceneIsNamedAndPricedAtNothing) {
+  SceneCost c;
+  c.kind = "impact";
+  c.refused = "impact.toml: dt_s: = 1e-05 s is above the stable limit\n";
+  const std::string line = describe_scene_cost("test \"t\" under model \"m\"", c);
+  EXPECT_NE(line.find("refused by the scene"), std::string::npos) << line;
+  EXPECT_NE(line.find("dt_s: = 1e-05 s is above the stable limit"), std::string::npos) << line;
+  EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+}
+
+TEST(CostEstimate, ClockText) {
+  EXPECT_EQ(clock_text(0.0), "0:00:00");
+  EXPECT_EQ(clock_text(59.6), "0:01:00");
+  EXPECT_EQ(clock_text(3 * 3600 + 25 * 60 + 7), "3:25:07");
+  EXPECT_EQ(clock_text(-5.0), "0:00:00");
+}
+
+TEST(RunProgressLine, FormatSaysWhatIsNotYetKnown) {
+  const std::string line = RunProgressLine::format(1, 4, 0.123, 0.35, 747, 2.5e4, 61.0, 125.0);
+  EXPECT_EQ(line, "run 2/4: t = 0.123 of ~0.35 s simulated, 747 spheres, 25000 steps/s, elapsed 0:01:01, left ~0:02:05");
+  const std::string start = RunProgressLine::format(0, 1, 0.0, 0.35, 9, 0.0, 0.0, -1.0);
+  EXPECT_NE(start.find("measuring steps/s"), std::string::npos) << start;
+  EXPECT_NE(start.find("left ~?"), std::string::npos) << start;
+}
+
+}  // namespace
+}  // namespace seedcal
