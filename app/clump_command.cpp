@@ -17,8 +17,11 @@ namespace seedcal {
 namespace {
 
 struct BuildArgs {
-  std::string variety, stl, method, out, name;
+  std::string variety, scan, unit, align = "principal", method, out, name;
   int spheres = 0;
+  // Scanner copies of one vertex differ in their last digits, far below a micrometre; a seed's
+  // scan has triangle edges of a tenth of a millimetre and more.
+  double weld_m = 1e-6;
   double smoothness = -1.0, soak_hours = 0.0, density = 0.0;
 };
 
@@ -26,7 +29,9 @@ std::string build_command_line(const BuildArgs& a) {
   std::ostringstream s;
   s << "seedcal clump build";
   if (!a.variety.empty()) s << " --variety " << a.variety;
-  if (!a.stl.empty()) s << " --stl " << a.stl << " --density " << a.density;
+  if (!a.scan.empty())
+    s << " --scan " << a.scan << " --unit " << a.unit << " --weld-m " << a.weld_m << " --align " << a.align
+      << " --density " << a.density;
   s << " --method " << a.method;
   if (a.spheres > 0) s << " --spheres " << a.spheres;
   if (a.smoothness >= 0) s << " --smoothness " << a.smoothness;
@@ -36,8 +41,12 @@ std::string build_command_line(const BuildArgs& a) {
 
 void run_build(const BuildArgs& a) {
   std::vector<std::string> problems;
-  if (a.variety.empty() == a.stl.empty()) problems.push_back("clump build: give --variety NAME or --stl FILE (one of them)");
-  if (!a.stl.empty() && !(a.density > 0.0)) problems.push_back("clump build: --stl needs --density KG_M3 > 0");
+  if (a.variety.empty() == a.scan.empty()) problems.push_back("clump build: give --variety NAME or --scan FILE (one of them)");
+  if (!a.scan.empty() && !(a.density > 0.0)) problems.push_back("clump build: --scan needs --density KG_M3 > 0");
+  if (!a.scan.empty() && a.unit.empty())
+    problems.push_back("clump build: --scan needs --unit m or --unit mm (the unit of the scan's coordinates; "
+                       "scanners often write millimetres)");
+  if (a.scan.empty() && !a.unit.empty()) problems.push_back("clump build: --unit goes with --scan");
   if (a.method == "manual" && (a.spheres < 5 || a.spheres > 15 || a.spheres % 2 == 0))
     problems.push_back("clump build: --method manual --spheres " + std::to_string(a.spheres) +
                        ": must be odd, 5 to 15");
@@ -54,10 +63,15 @@ void run_build(const BuildArgs& a) {
     info = variety_shape(v, a.soak_hours);
     density = v.density_kg_m3;
   } else {
-    info.kind = "stl";
-    info.stl_path = a.stl;
+    info.kind = "scan";
+    info.scan = {a.scan, metres_per_unit(a.unit), a.weld_m, a.align == "principal"};
   }
   const auto shape = make_shape(info);
+  // The clump file names the scan relative to its own folder (clump_file.hpp).
+  if (info.kind == "scan" && std::filesystem::path(a.scan).is_relative()) {
+    const auto dir = std::filesystem::absolute(std::filesystem::path(a.out)).parent_path();
+    info.scan.path = std::filesystem::relative(std::filesystem::absolute(a.scan), dir).string();
+  }
   const auto t0 = std::chrono::steady_clock::now();
   ClumpModel m = build_clump(*shape, info, density, {a.method, a.spheres, a.smoothness});
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -73,6 +87,7 @@ void run_build(const BuildArgs& a) {
   std::printf("%s: %zu spheres, volume %.5e m3 (shape %.5e m3, %.2f %%), IoU %.4f, built in %.2f s\n",
               a.out.c_str(), m.spheres.size(), m.volume_m3, m.target_volume_m3,
               100.0 * m.volume_m3 / m.target_volume_m3, m.iou, secs);
+  if (info.kind == "scan") std::printf("  shape: %s\n", shape->describe().c_str());
 }
 
 nlohmann::json info_json(const std::string& path) {
@@ -256,8 +271,13 @@ void add_clump_command(CLI::App& app, GlobalOptions& g) {
   auto b = std::make_shared<BuildArgs>();
   CLI::App* build = sub->add_subcommand("build", "fill a seed shape with spheres and write a clump file");
   build->add_option("--variety", b->variety, "variety name (data/varieties/NAME.toml) or file");
-  build->add_option("--stl", b->stl, "closed STL surface (coordinates in m) instead of a variety");
-  build->add_option("--density", b->density, "density in kg/m3 (with --stl)");
+  build->add_option("--scan,--stl", b->scan, "closed surface of a scanned seed (.stl, .ply or .obj) instead of a variety");
+  build->add_option("--unit", b->unit, "unit of the scan's coordinates (required with --scan)")->check(CLI::IsMember({"m", "mm"}));
+  build->add_option("--weld-m", b->weld_m, "scan vertices closer than this become one, m")
+      ->check(CLI::Range(0.0, 1e-3))->capture_default_str();
+  build->add_option("--align", b->align, "principal: turn the scan so that x is its length axis; none: keep the scanner's frame")
+      ->check(CLI::IsMember({"principal", "none"}))->capture_default_str();
+  build->add_option("--density", b->density, "density in kg/m3 (with --scan)");
   build->add_option("--method", b->method, "manual or auto")->required()->check(CLI::IsMember({"manual", "auto"}));
   build->add_option("--spheres", b->spheres, "sphere count: manual odd 5..15; auto a target 1..5000");
   build->add_option("--smoothness", b->smoothness, "auto: 0 (finest, ~1,800 spheres) .. 5 (coarsest)");

@@ -5,7 +5,7 @@
 #   1. Release suite: every ctest test (unit, physics, regression, cli, browser, validation).
 #   2. ASan + UBSan + LeakSanitizer build (clang) of the same suite (tests labelled `slow` left out to
 #      stay in budget; cli_scenes_mini_test runs every scene kind and the MPI executor in miniature).
-#   3. The libFuzzer targets of that build (STL, study and clump readers), 60 s each.
+#   3. The libFuzzer targets of that build (STL, PLY and OBJ, study and clump readers), 60 s each.
 # Set SEEDCAL_SKIP_SANITIZE=1 to run stage 1 only (local iteration), SEEDCAL_FUZZ_SECONDS=N to
 # change the fuzzing time.
 set -euo pipefail

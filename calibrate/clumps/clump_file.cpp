@@ -1,6 +1,7 @@
 #include "calibrate/clumps/clump_file.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -38,7 +39,7 @@ std::string vec(const Vec3& v) {
 
 std::unique_ptr<Shape> make_shape(const ClumpShapeInfo& info) {
   try {
-    if (info.kind == "stl") return std::make_unique<MeshShape>(MeshShape::from_stl(info.stl_path));
+    if (info.kind == "scan") return std::make_unique<MeshShape>(MeshShape::from_scan(info.scan));
     return std::make_unique<EllipsoidShape>(info.ellipsoid);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
@@ -91,8 +92,11 @@ std::string clump_file_text(const ClumpModel& m) {
     << vec(m.axes_in_shape.col(2)) << "]\n\n";
   o << "[shape]                      # the target shape; x is the length (hilum) axis\n";
   o << "kind = " << quoted(m.shape.kind) << "\n";
-  if (m.shape.kind == "stl") {
-    o << "path = " << quoted(m.shape.stl_path) << "\n";
+  if (m.shape.kind == "scan") {
+    o << "path = " << quoted(m.shape.scan.path) << "\n";
+    o << "unit = " << quoted(unit_name(m.shape.scan.metres_per_unit)) << "\n";
+    o << "weld_m = " << num(m.shape.scan.weld_m) << "\n";
+    o << "align = " << quoted(m.shape.scan.align ? "principal" : "none") << "\n";
   } else {
     const auto& e = m.shape.ellipsoid;
     o << "length_m = " << num(e.length_m) << "\nwidth_m = " << num(e.width_m) << "\nthickness_m = "
@@ -152,9 +156,22 @@ ClumpModel read_clump_file(const std::string& path) {
     t->check_unknown_keys();
   }
   if (auto t = r.table("shape")) {
-    m.shape.kind = t->choice("kind", {"ellipsoid", "stl"});
-    if (m.shape.kind == "stl") {
-      m.shape.stl_path = t->string("path");
+    m.shape.kind = t->choice("kind", {"ellipsoid", "scan", "stl"});
+    if (m.shape.kind != "ellipsoid") {
+      ScanSpec& scan = m.shape.scan;
+      // A relative path names a file beside the clump file; an older file's path that only exists
+      // from the working directory is still found there.
+      scan.path = t->string("path");
+      const std::filesystem::path beside = std::filesystem::path(path).parent_path() / scan.path;
+      if (std::filesystem::path(scan.path).is_relative() && std::filesystem::exists(beside) &&
+          !std::filesystem::path(path).parent_path().empty())
+        scan.path = beside.string();
+      if (m.shape.kind == "scan") {
+        scan.metres_per_unit = metres_per_unit(t->choice("unit", {"m", "mm"}));
+        scan.weld_m = t->number("weld_m", Range::closed(0.0, 1e-3), 0.0);
+        scan.align = t->choice("align", {"principal", "none"}) == "principal";
+      }
+      m.shape.kind = "scan";
     } else {
       auto& e = m.shape.ellipsoid;
       e.length_m = t->number("length_m", Range::left_open(0, 0.5));

@@ -7,7 +7,9 @@
 //   [mass_properties]  volume_m3, volume_rel_error, density_kg_m3, mass_kg, principal_inertia_kg_m2
 //   [body_frame]       origin_in_shape_m, axes_in_shape  (p_shape = origin + sum p_body[i] axes[i])
 //   [shape]            kind = "ellipsoid" (length_m, width_m, thickness_m, hilum_radius_m,
-//                      hilum_centre) or "stl" (path), volume_m3
+//                      hilum_centre) or "scan" (path, relative to this file's folder; unit "m" or
+//                      "mm"; weld_m; align = "principal" or "none"; scan.hpp), volume_m3.
+//                      kind = "stl" (path, in m, as it is) is read as an older scan.
 //   [fill]             method, spheres, smoothness, min_radius_m, iou, iou_error, layout
 //   [provenance]       seedcal_version, command, variety, variety_file, soak_hours
 #include <memory>
@@ -19,9 +21,9 @@
 namespace seedcal {
 
 struct ClumpShapeInfo {
-  std::string kind = "ellipsoid";  // or "stl"
+  std::string kind = "ellipsoid";  // or "scan"
   EllipsoidSpec ellipsoid;
-  std::string stl_path;
+  ScanSpec scan;  // the path as the clump file resolves it (its folder, or as written)
 };
 
 // Throws InputError when the shape cannot be made (bad STL, bad dimensions).

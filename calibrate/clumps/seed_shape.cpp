@@ -10,6 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "solver/core/errors.hpp"
+
 namespace seedcal {
 namespace {
 
@@ -230,46 +232,27 @@ std::string MeshShape::describe() const {
   return "closed surface " + source_ + " (" + std::to_string(tris_.size()) + " triangles)";
 }
 
-MeshShape MeshShape::from_stl(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::invalid_argument(path + ": cannot open the STL file");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::vector<std::array<Vec3, 3>> tris;
-  bool binary = false;
-  if (bytes.size() >= 84) {
-    std::uint32_t n = 0;
-    std::memcpy(&n, bytes.data() + 80, 4);
-    binary = bytes.size() == 84 + 50ull * n;
-    if (binary) {
-      for (std::uint32_t k = 0; k < n; ++k) {
-        const char* p = bytes.data() + 84 + 50ull * k + 12;  // skip the normal
-        std::array<Vec3, 3> t;
-        for (int v = 0; v < 3; ++v) {
-          float f[3];
-          std::memcpy(f, p + 12 * v, 12);
-          t[static_cast<std::size_t>(v)] = Vec3(f[0], f[1], f[2]);
-        }
-        tris.push_back(t);
-      }
-    }
+MeshShape MeshShape::from_scan(const ScanSpec& spec) {
+  LoadedScan scan;
+  try {
+    ScanSpec as_is = spec;
+    as_is.align = false;
+    scan = load_scan(as_is);
+  } catch (const SettingError& e) {
+    throw std::invalid_argument(e.what());
   }
-  if (!binary) {
-    if (bytes.compare(0, 5, "solid") != 0)
-      throw std::invalid_argument(path + ": neither a binary STL (size != 84 + 50 n) nor an ASCII one");
-    std::istringstream s(bytes);
-    std::string word;
-    std::vector<Vec3> verts;
-    while (s >> word) {
-      if (word != "vertex") continue;
-      double x, y, z;
-      if (!(s >> x >> y >> z)) throw std::invalid_argument(path + ": a 'vertex' line needs 3 numbers");
-      verts.emplace_back(x, y, z);
-    }
-    if (verts.size() % 3 != 0) throw std::invalid_argument(path + ": vertex count is not a multiple of 3");
-    for (std::size_t k = 0; k < verts.size(); k += 3) tris.push_back({verts[k], verts[k + 1], verts[k + 2]});
-  }
-  return MeshShape(std::move(tris), path);
+  std::string source = spec.path;
+  if (spec.metres_per_unit != 1.0) source += " in " + unit_name(spec.metres_per_unit);
+  if (scan.weld.vertices_out < scan.weld.vertices_in || scan.weld.degenerate_dropped > 0)
+    source += ", " + std::to_string(scan.weld.vertices_in - scan.weld.vertices_out) + " vertices welded";
+  if (!spec.align) return MeshShape(std::move(scan.triangles), source);
+  // Closed (the constructor says so naming the file) before its principal frame means anything.
+  const MeshShape as_scanned(scan.triangles, source);
+  const PrincipalFrame frame = principal_frame(scan.triangles);
+  return MeshShape(to_frame(scan.triangles, frame), source + ", in its principal frame");
 }
+
+MeshShape MeshShape::from_stl(const std::string& path) { return from_scan(ScanSpec{path}); }
 
 // ---------------------------------------------------------------------------------------------
 void sphere_chords(const std::vector<SphereXYZR>& spheres, double y, double z,

@@ -1,6 +1,6 @@
 #pragma once
 // Target shapes a clump is built to fill: a tri-axial ellipsoid from measured length, width and
-// thickness with an optional hilum bump, or a closed triangle surface (STL, a real scan). Every
+// thickness with an optional hilum bump, or a closed triangle surface (a real scan: STL, PLY or OBJ). Every
 // shape answers "which stretches of the line {(x, y, z): x real} lie inside me?" exactly; inside
 // tests, voxel grids, volumes and intersection over union are all built on that (docs/clumps.md).
 #include <array>
@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "calibrate/clumps/scan.hpp"
 #include "solver/clump/mass_properties.hpp"
 #include "solver/core/vec.hpp"
 
@@ -68,7 +69,10 @@ class EllipsoidShape final : public Shape {
 class MeshShape final : public Shape {
  public:
   MeshShape(std::vector<std::array<Vec3, 3>> triangles, std::string source);
-  static MeshShape from_stl(const std::string& path);  // binary or ASCII STL, coordinates in m
+  // A scan (STL, PLY or OBJ) read in its unit, welded and, when asked, aligned (scan.hpp); a
+  // reader's error or an open surface throws std::invalid_argument naming the file.
+  static MeshShape from_scan(const ScanSpec& spec);
+  static MeshShape from_stl(const std::string& path);  // STL in m, as it is: from_scan({path})
   void chords(double y, double z, std::vector<Interval>& out) const override;
   Aabb bounds() const override { return box_; }
   double volume_m3() const override { return volume_; }

@@ -92,23 +92,16 @@ std::string modulus_set(const std::string& material, double e) {
 
 }  // namespace
 
-std::vector<PlannedRuns> tradeoff_plan(const TradeoffOptions& o) {
-  std::vector<PlannedRuns> plan;
-  // The first row of each sweep is its reference: a setting refused there is bad input; a later
-  // one is recorded as refused (run_row).
-  auto row = [&](const std::string& set, bool reference) {
-    std::vector<std::string> sets = o.sets;
-    sets.push_back(set);
-    plan.push_back({set, o.scene, sets, o.repeats, !reference});
-  };
-  for (std::size_t i = 0; i < o.rayleigh_fractions.size(); ++i) row(fraction_set(o.rayleigh_fractions[i]), i == 0);
-  for (std::size_t i = 0; i < o.youngs_moduli_pa.size(); ++i) row(modulus_set(o.material, o.youngs_moduli_pa[i]), i == 0);
-  return plan;
-}
+namespace {
 
-nlohmann::json tradeoff_study(const TradeoffOptions& o) {
-  // The scene as it stands (overrides applied): its own step fraction and modulus decide whether
-  // the modulus sweep's reference row is a row the step sweep has already run.
+// The scene's own step fraction and modulus, read from the scene as it stands (overrides
+// applied): they decide whether the modulus sweep's reference row is a row the step sweep has
+// already run. Throws InputError for a scene the sweeps cannot vary.
+struct SweepScene {
+  double own_modulus = 0.0, own_fraction = 0.2;
+};
+
+SweepScene check_sweep_scene(const TradeoffOptions& o) {
   const SceneFile scene = load_scene_file(o.scene, o.sets);
   if (scene.doc.contains("dt_s"))
     throw InputError(o.scene + ": dt_s is set: the step-fraction sweep needs a scene whose step comes from "
@@ -121,16 +114,57 @@ nlohmann::json tradeoff_study(const TradeoffOptions& o) {
     throw InputError(o.scene + ": --material " + o.material + ": the scene has no materials." + o.material +
                      ".youngs_modulus_pa to sweep");
   auto number = [](const toml::value& v) { return v.is_floating() ? v.as_floating() : static_cast<double>(v.as_integer()); };
-  const double own_modulus = number(*modulus);
-  const double own_fraction = scene.doc.contains("rayleigh_fraction") ? number(scene.doc.at("rayleigh_fraction")) : 0.2;
+  SweepScene s;
+  s.own_modulus = number(*modulus);
+  if (scene.doc.contains("rayleigh_fraction")) s.own_fraction = number(scene.doc.at("rayleigh_fraction"));
+  return s;
+}
+
+// The sweeps in the order they run: step fractions rising, moduli falling (stiffest first).
+std::vector<double> fractions_in_order(const TradeoffOptions& o) {
+  std::vector<double> f = o.rayleigh_fractions;
+  std::sort(f.begin(), f.end());
+  return f;
+}
+std::vector<double> moduli_in_order(const TradeoffOptions& o) {
+  std::vector<double> m = o.youngs_moduli_pa;
+  std::sort(m.rbegin(), m.rend());
+  return m;
+}
+
+}  // namespace
+
+std::vector<PlannedRuns> tradeoff_plan(const TradeoffOptions& o) {
+  const SweepScene scene = check_sweep_scene(o);
+  std::vector<PlannedRuns> plan;
+  // The first row of each sweep is its reference: a setting refused there is bad input; a later
+  // one is recorded as refused (run_row).
+  auto row = [&](const std::string& set, bool reference) {
+    std::vector<std::string> sets = o.sets;
+    sets.push_back(set);
+    plan.push_back({set, o.scene, sets, o.repeats, !reference});
+  };
+  const std::vector<double> fractions = fractions_in_order(o), moduli = moduli_in_order(o);
+  for (std::size_t i = 0; i < fractions.size(); ++i) row(fraction_set(fractions[i]), i == 0);
+  const bool own_fraction_runs =
+      std::find(fractions.begin(), fractions.end(), scene.own_fraction) != fractions.end();
+  for (std::size_t i = 0; i < moduli.size(); ++i) {
+    // The scene's own modulus at its own step is a row of the step sweep already: not run again.
+    if (own_fraction_runs && moduli[i] == scene.own_modulus) continue;
+    row(modulus_set(o.material, moduli[i]), i == 0);
+  }
+  return plan;
+}
+
+nlohmann::json tradeoff_study(const TradeoffOptions& o) {
+  const SweepScene scene = check_sweep_scene(o);
+  const double own_modulus = scene.own_modulus, own_fraction = scene.own_fraction;
 
   std::string metric = o.metric;
   nlohmann::json j = {{"study", "tradeoff"}, {"scene", o.scene}, {"sets", o.sets}, {"repeats", o.repeats},
                       {"seed", o.seed}, {"tolerance", o.tolerance}};
   nlohmann::json dt = {{"parameter", "rayleigh_fraction"}, {"rows", nlohmann::json::array()}};
-  std::vector<double> fractions = o.rayleigh_fractions;
-  std::sort(fractions.begin(), fractions.end());
-  for (const double f : fractions) {
+  for (const double f : fractions_in_order(o)) {
     const std::string set = fraction_set(f);
     char name[64];
     std::snprintf(name, sizeof name, "rayleigh_fraction_%.3g", f);
@@ -140,9 +174,7 @@ nlohmann::json tradeoff_study(const TradeoffOptions& o) {
   }
   nlohmann::json stiff = {{"parameter", "materials." + o.material + ".youngs_modulus_pa"},
                           {"rows", nlohmann::json::array()}};
-  std::vector<double> moduli = o.youngs_moduli_pa;
-  std::sort(moduli.rbegin(), moduli.rend());
-  for (const double e : moduli) {
+  for (const double e : moduli_in_order(o)) {
     const std::string set = modulus_set(o.material, e);
     char name[64];
     std::snprintf(name, sizeof name, "youngs_modulus_%.3g", e);
