@@ -5,18 +5,12 @@
 #include <cstdio>
 #include <iostream>
 
+#include "calibrate/pipeline/progress.hpp"
+
 namespace seedcal {
 namespace {
 
 constexpr double kRedraw_s = 0.25;
-
-std::string clock_text(double s) {
-  if (!std::isfinite(s) || s < 0) return "?";
-  const long v = std::lround(s);
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", v / 3600, (v / 60) % 60, v % 60);
-  return buf;
-}
 
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
@@ -42,7 +36,7 @@ std::string RunProgressLine::format(std::size_t run, int runs, double t_s, doubl
   if (steps_per_s > 0.0) std::snprintf(rate, sizeof rate, "%.0f steps/s", steps_per_s);
   std::snprintf(buf, sizeof buf, "run %zu/%d: t = %.3f of ~%.3g s simulated, %zu spheres, %s, elapsed %s, left ~%s",
                 run + 1, runs, t_s, planned_s, spheres, rate, clock_text(elapsed_s).c_str(),
-                left_s < 0.0 ? "?" : clock_text(left_s).c_str());
+                clock_text(left_s).c_str());
   return buf;
 }
 

@@ -6,6 +6,7 @@
 
 #include "calibrate/pipeline/evaluation.hpp"
 #include "calibrate/pipeline/pipeline.hpp"
+#include "calibrate/pipeline/progress.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "store/errors.hpp"
 #include "solver/scenes/cost_probe.hpp"
@@ -23,13 +24,6 @@ std::string fmt(const char* f, double v) {
 }
 
 }  // namespace
-
-std::string clock_text(double s) {
-  const long v = std::lround(std::max(0.0, s));
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", v / 3600, (v / 60) % 60, v % 60);
-  return buf;
-}
 
 SceneCost RunPricer::price(const SceneFile& scene) {
   SceneCost c;

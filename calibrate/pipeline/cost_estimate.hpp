@@ -67,8 +67,6 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads);
 
 // A scene's plan and cost in one line ("plan: ...").
 std::string describe_scene_cost(const std::string& what, const SceneCost& c);
-// "0:12:27".
-std::string clock_text(double seconds);
 
 // The estimate in lines for the terminal and the log; `slots` simulations run at once.
 std::vector<std::string> describe_cost(const StudyCostEstimate& e, int slots);

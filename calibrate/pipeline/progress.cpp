@@ -16,8 +16,6 @@ std::string utc_now() {
   return buf;
 }
 
-namespace {
-
 std::string clock_text(double s) {
   if (!std::isfinite(s) || s < 0) return "?";
   const long v = std::lround(s);
@@ -25,8 +23,6 @@ std::string clock_text(double s) {
   std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", v / 3600, (v / 60) % 60, v % 60);
   return buf;
 }
-
-}  // namespace
 
 Progress::Progress(const std::string& log_path, bool terminal, int slots)
     : log_(log_path, std::ios::app), terminal_(terminal), slots_(slots > 0 ? slots : 1),

@@ -11,6 +11,9 @@ namespace seedcal {
 // The current UTC time as ISO 8601 (YYYY-MM-DDThh:mm:ssZ).
 std::string utc_now();
 
+// A duration as h:mm:ss ("0:12:27"); "?" when it is unknown (negative or not finite).
+std::string clock_text(double seconds);
+
 class Progress {
  public:
   Progress(const std::string& log_path, bool terminal, int slots);

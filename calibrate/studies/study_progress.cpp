@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "calibrate/pipeline/progress.hpp"
 #include "store/errors.hpp"
 
 namespace seedcal {
