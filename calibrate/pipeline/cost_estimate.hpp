@@ -4,8 +4,8 @@
 //
 // A run's cost is its plan's sphere-steps (solver/scenes/run_plan.hpp: the scene's seeds and the
 // simulated time of each phase of its protocol) times this machine's CPU seconds per sphere-step,
-// measured on a bed of the scene's own seed (solver/scenes/cost_probe.hpp, about a second per
-// distinct seed and time step). The stages' run counts follow the study file: the screening design,
+// measured on a bed of the scene's own seed (solver/scenes/cost_probe.hpp, one probe per
+// distinct seed template). The stages' run counts follow the study file: the screening design,
 // the surrogate design for the parameters marked `calibrate` (at least two are kept), three
 // confirmation rounds of `[confirm] replicates` runs (the budget `max_evaluations` caps it), no
 // ascent (it runs only when the screening box misses the target; its most is stated), and every

@@ -10,7 +10,8 @@ namespace seedcal {
 namespace {
 
 // About 1,500 spheres: enough that the per-step fixed costs do not count, few enough that the
-// probe takes about a second. At least 12 bodies so a fine clump still forms a bed two deep.
+// probe costs a small part of one run of a bulk scene. At least 12 bodies so a fine clump still
+// forms a bed two deep.
 constexpr double kProbeSpheres = 1500.0;
 constexpr std::size_t kMinBodies = 12, kMaxBodies = 400;
 // The bodies are placed in a region four bed heights tall (about a quarter of it solid, where the
