@@ -7,8 +7,6 @@
 #include <map>
 #include <stdexcept>
 
-#include "solver/walls/surface_reader.hpp"
-
 namespace seedcal {
 namespace {
 
@@ -121,18 +119,6 @@ std::vector<Triangle> to_frame(const std::vector<Triangle>& triangles, const Pri
   const Mat3 rt = f.axes.transpose();
   for (const Triangle& t : triangles) out.push_back({rt * (t[0] - f.centroid_m), rt * (t[1] - f.centroid_m), rt * (t[2] - f.centroid_m)});
   return out;
-}
-
-LoadedScan load_scan(const ScanSpec& spec) {
-  LoadedScan s;
-  s.weld = weld_vertices(read_surface(spec.path, spec.metres_per_unit), spec.weld_m);
-  s.triangles = std::move(s.weld.triangles);
-  s.weld.triangles.clear();
-  if (spec.align && !s.triangles.empty()) {
-    s.frame = principal_frame(s.triangles);
-    s.triangles = to_frame(s.triangles, s.frame);
-  }
-  return s;
 }
 
 }  // namespace seedcal

@@ -1,7 +1,8 @@
 #pragma once
 // A seed's scan as a clump's target shape: the surface read in its unit (STL, PLY or OBJ;
 // solver/walls/surface_reader.hpp), its vertices welded, and the solid turned into its principal
-// frame, so that x is the length axis as for a measured ellipsoid (seed_shape.hpp).
+// frame, so that x is the length axis as for a measured ellipsoid (MeshShape::from_scan in
+// seed_shape.hpp does the three).
 //
 // Welding: scanners and mesh exports repeat a vertex per triangle, and the copies can differ in
 // their last digits; vertices closer than the tolerance become one (the first of them, in file
@@ -53,13 +54,5 @@ struct PrincipalFrame {
 PrincipalFrame principal_frame(const std::vector<Triangle>& triangles);
 // Every vertex p as axes^T (p - centroid).
 std::vector<Triangle> to_frame(const std::vector<Triangle>& triangles, const PrincipalFrame& f);
-
-struct LoadedScan {
-  std::vector<Triangle> triangles;  // welded, in the principal frame when aligned
-  WeldResult weld;                  // (its triangles moved into `triangles`)
-  PrincipalFrame frame;             // of the welded surface in the file's frame (metres)
-};
-// Reads, welds and (when spec.align) aligns. Throws SettingError from the readers.
-LoadedScan load_scan(const ScanSpec& spec);
 
 }  // namespace seedcal

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "solver/core/errors.hpp"
+#include "solver/walls/surface_reader.hpp"
 
 namespace seedcal {
 namespace {
@@ -233,18 +234,16 @@ std::string MeshShape::describe() const {
 }
 
 MeshShape MeshShape::from_scan(const ScanSpec& spec) {
-  LoadedScan scan;
+  WeldResult scan;
   try {
-    ScanSpec as_is = spec;
-    as_is.align = false;
-    scan = load_scan(as_is);
+    scan = weld_vertices(read_surface(spec.path, spec.metres_per_unit), spec.weld_m);
   } catch (const SettingError& e) {
     throw std::invalid_argument(e.what());
   }
   std::string source = spec.path;
   if (spec.metres_per_unit != 1.0) source += " in " + unit_name(spec.metres_per_unit);
-  if (scan.weld.vertices_out < scan.weld.vertices_in || scan.weld.degenerate_dropped > 0)
-    source += ", " + std::to_string(scan.weld.vertices_in - scan.weld.vertices_out) + " vertices welded";
+  if (scan.vertices_out < scan.vertices_in || scan.degenerate_dropped > 0)
+    source += ", " + std::to_string(scan.vertices_in - scan.vertices_out) + " vertices welded";
   if (!spec.align) return MeshShape(std::move(scan.triangles), source);
   // Closed (the constructor says so naming the file) before its principal frame means anything.
   const MeshShape as_scanned(scan.triangles, source);
