@@ -24,8 +24,8 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.plan) *ctx.plan = plan_bulk_density(spec);  // what the run will simulate (run_plan.hpp)
   if (ctx.check_only) {  // validated: run nothing
-    if (ctx.plan) *ctx.plan = plan_bulk_density(spec);
     return nlohmann::json::object();
   }
 

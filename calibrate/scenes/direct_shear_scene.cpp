@@ -50,8 +50,8 @@ nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx)
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.plan) *ctx.plan = plan_direct_shear(spec);  // what the run will simulate (run_plan.hpp)
   if (ctx.check_only) {  // validated: run nothing
-    if (ctx.plan) *ctx.plan = plan_direct_shear(spec);
     return nlohmann::json::object();
   }
 

@@ -36,8 +36,8 @@ nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.plan) *ctx.plan = plan_drum(spec);  // what the run will simulate (run_plan.hpp)
   if (ctx.check_only) {  // validated: run nothing
-    if (ctx.plan) *ctx.plan = plan_drum(spec);
     return nlohmann::json::object();
   }
 

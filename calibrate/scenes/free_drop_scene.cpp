@@ -31,8 +31,8 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   }
   root.check_unknown_keys();
   root.diagnostics().throw_if_any();
+  if (ctx.plan) *ctx.plan = plan_free_drop(spec);  // what the run will simulate (run_plan.hpp)
   if (ctx.check_only) {  // validated: run nothing
-    if (ctx.plan) *ctx.plan = plan_free_drop(spec);
     return nlohmann::json::object();
   }
 

@@ -114,22 +114,10 @@ nlohmann::json run_one(const SceneRunner& runner, const toml::value& doc, const 
     c.observer.progress_interval_s = ctx.progress_interval_s;
     c.observer.on_progress = [&ctx, k](const Simulation& sim) { ctx.progress(k, sim); };
   }
-  // What the run was planned to simulate (run_plan.hpp), beside what it did: the check reads the
-  // config again and runs nothing.
+  // What the run was planned to simulate (run_plan.hpp), beside what it did: the runner states it
+  // from the spec it has read, before it simulates.
   RunPlan plan;
-  if (!ctx.check_only) {
-    auto plan_diag = std::make_shared<ConfigDiagnostics>();
-    plan_diag->file = config_path;
-    TomlReader plan_root(doc, "", plan_diag);
-    plan_root.integer("repeats", 1, 1000, 1);
-    read_output(plan_root);
-    SceneContext pc = c;
-    pc.check_only = true;
-    pc.plan = &plan;
-    pc.observer = {};
-    pc.progress = nullptr;
-    runner(plan_root, pc);
-  }
+  if (!ctx.check_only) c.plan = &plan;
   nlohmann::json run = runner(root, c);
   if (!ctx.check_only)
     run["plan"] = {{"simulated_s", plan.simulated_s()}, {"steps", plan.steps()}, {"seeds", plan.seeds},
