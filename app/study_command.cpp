@@ -108,7 +108,7 @@ void add_study_command(CLI::App& app, GlobalOptions& g) {
   a->o.free_drop_scene = "data/scenes/jinong1/free_drop.toml";
   a->o.drum_scene = "data/scenes/jinong1/drum.toml";
   // The paper's section 4 model: Jinong 1, automatic filling at smoothness 2 (188 spheres in EDEM).
-  a->o.sets = {"particle.clump_file=../../clumps/jinong1-auto-s2.toml"};
+  a->o.sets = {"particle.model=auto-s2"};  // data/varieties/jinong1.toml [models]
   CLI::App* sub = app.add_subcommand("study", "the paper's section 4 studies (multicontact, stiffness, moisture) the speed-accuracy tradeoff and scene trend checks");
   sub->require_subcommand(1);
 

@@ -119,9 +119,44 @@ Variety read_variety(const std::string& name_or_path) {
   };
   numbers_of("simulation", v.simulation);
   numbers_of("targets", v.targets);
+  if (auto mc = r.table("material_contact")) {
+    for (const std::string& material : mc->keys()) {
+      auto c = mc->table(material);
+      if (!c) continue;
+      auto& values = v.material_contact[material];
+      // The ranges of an [[interaction]] (calibrate/config/physics_config.cpp).
+      values["restitution"] = c->number("restitution", Range::left_open(0.0, 1.0));
+      values["static_friction"] = c->number("static_friction", Range::closed(0.0, 10.0));
+      values["rolling_friction"] = c->number("rolling_friction", Range::closed(0.0, 10.0), 0.0);
+      c->check_unknown_keys();
+    }
+  }
+  if (auto m = r.table("models")) {
+    namespace fs = std::filesystem;
+    for (const std::string& name : m->keys()) {
+      const std::string file = m->string(name);
+      const fs::path path = fs::path(v.file).parent_path() / file;
+      if (fs::path(file).is_absolute() ? !fs::exists(file) : !fs::exists(path))
+        m->error(name, "= \"" + file + "\": clump file not found (paths are relative to the variety file)");
+      v.models[name] = fs::path(file).is_absolute() ? file : path.lexically_normal().string();
+    }
+    m->check_unknown_keys();
+  }
+  v.default_model = r.string("default_model", "");
+  if (!v.default_model.empty() && !v.models.count(v.default_model))
+    r.error("default_model", "= \"" + v.default_model + "\": not one of [models]");
   r.check_unknown_keys();
   diag->throw_if_any();
   return v;
+}
+
+std::string variety_model_file(const Variety& v, const std::string& name) {
+  const auto it = v.models.find(name);
+  if (it != v.models.end()) return it->second;
+  std::string names;
+  for (const auto& [n, _] : v.models) names += (names.empty() ? "" : ", ") + n;
+  throw InputError(v.file + ": [models] has no model \"" + name + "\" (it has: " +
+                   (names.empty() ? "none" : names) + ")");
 }
 
 }  // namespace seedcal

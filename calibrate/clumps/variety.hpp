@@ -1,7 +1,11 @@
 #pragma once
 // A seed variety as measured (data/varieties/NAME.toml): density, moisture, tri-axial dimensions,
-// width distribution, soaking and moisture-modulus tables, the paper's clump volumes (Table 4) and
-// the physical-test targets. Reading validates every value and names file, key and range.
+// width distribution, soaking and moisture-modulus tables, the paper's clump volumes (Table 4), the
+// physical-test targets, its DEM values (Table 6: [simulation] for the seed and seed-seed contact,
+// [material_contact.NAME] for the seed on a rig material) and its clump models ([models], with
+// `default_model`). It is the one source of a seed's properties: a scene names it and takes them
+// from it (calibrate/config/variety_scene.hpp). Reading validates every value and names file, key
+// and range.
 #include <map>
 #include <string>
 #include <vector>
@@ -33,6 +37,10 @@ struct Variety {
   std::vector<PaperClump> paper_clumps;
   std::map<std::string, double> simulation, targets;  // Table 6 seed column; section 3.1
   std::map<std::string, std::string> flags;           // "targets.bulk_density_flag" -> text
+  // Seed-to-material contact: material name -> restitution, static_friction, rolling_friction.
+  std::map<std::string, std::map<std::string, double>> material_contact;
+  std::map<std::string, std::string> models;  // clump model name -> clump file (resolved, exists)
+  std::string default_model;                  // one of `models`; "" when it names none
 
   EllipsoidSpec shape() const;  // mean L x W x T and the hilum settings
 };
@@ -41,5 +49,8 @@ struct Variety {
 // under the working directory, then under $SEEDCAL_DATA_DIR/varieties. Throws InputError.
 std::string variety_path(const std::string& name_or_path);
 Variety read_variety(const std::string& name_or_path);
+
+// The clump file of model `name` of the variety; InputError naming the variety's models otherwise.
+std::string variety_model_file(const Variety& v, const std::string& name);
 
 }  // namespace seedcal

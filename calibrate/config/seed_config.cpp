@@ -11,6 +11,7 @@ SeedSceneConfig read_seed_scene(TomlReader& root, const std::string& config_path
   c.seeds.body = particle.body;
   c.seeds.scale = particle.scale;
   c.particle_description = particle.description;
+  c.clump_file = particle.clump_file;
   c.seed_material = particle.material;
   return c;
 }

@@ -2,7 +2,8 @@
 // What the seed scenes share in their configs: the fidelity, the [particle] table with its scale
 // distribution, and the rig table of the chosen fidelity:
 //   fidelity = "paper" | "quick"
-//   [particle] material, clump_file | spheres_m,
+//   variety = "../../varieties/NAME.toml"    # the seed's values (calibrate/config/variety_scene.hpp)
+//   [particle] material, clump_file | spheres_m | model,
 //              scale_sd = 0.13, scale_min = 0.74, scale_max = 1.26   # optional; mean is 1
 //   [RIG.paper] ... / [RIG.quick] ...                                 # per-fidelity rig keys
 #include <optional>
@@ -18,6 +19,7 @@ struct SeedSceneConfig {
   SeedSpec seeds;
   std::string fidelity;
   std::string particle_description;
+  std::string clump_file;  // the clump file the seeds come from (resolved); "" for inline spheres
   std::uint16_t seed_material = PhysicsConfig::kUnknown;
 
   // Records an error on `rig` (key `key`) when the seeds and `wall_material` have no interaction.

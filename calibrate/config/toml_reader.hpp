@@ -85,6 +85,7 @@ class TomlReader {
   void warn(const std::string& key, const std::string& message);
   std::string full_key(const std::string& key) const;
   const std::string& prefix() const { return prefix_; }
+  const toml::value& value() const { return *table_; }  // the table this reader reads
   ConfigDiagnostics& diagnostics() { return *diag_; }
 
  private:

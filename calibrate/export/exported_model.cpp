@@ -63,11 +63,8 @@ ExportedModel exported_model_from_scene(const std::string& scene_path, const std
   m.seeds = cfg.seeds;
   m.seed_material = cfg.seed_material;
   m.particle_description = cfg.particle_description;
-  const toml::value& doc = f.doc;
-  if (doc.contains("particle") && doc.at("particle").is_table() && doc.at("particle").contains("clump_file"))
-    m.particle_description = std::filesystem::path(resolve_data_path(cfg.particle_description, scene_path))
-                                 .lexically_normal()
-                                 .string();
+  if (!cfg.clump_file.empty())
+    m.particle_description = std::filesystem::path(cfg.clump_file).lexically_normal().string();
   m.wall_material = m.seed_material;
   for (std::uint16_t k = 0; k < m.physics.materials.size(); ++k) {
     if (k != m.seed_material && m.interaction(m.seed_material, k)) {

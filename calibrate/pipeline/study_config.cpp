@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "calibrate/clumps/clump_source.hpp"
+#include "calibrate/clumps/variety.hpp"
+#include "calibrate/scenes/scene_file.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
 #include "calibrate/pipeline/pipeline.hpp"
@@ -82,6 +84,8 @@ void read_model(TomlReader& t, StudyConfig& s) {
   StudyModel m;
   m.name = t.string("name");
   if (t.has("set")) m.sets = t.strings("set", 0, 64);
+  // One of the variety's clump models ([models] of the variety file the scenes or the study name).
+  if (t.has("clump_model")) m.sets.insert(m.sets.begin(), "particle.model=" + t.string("clump_model"));
   t.check_unknown_keys();
   for (const auto& q : s.models)
     if (q.name == m.name) t.error("name", "= \"" + m.name + "\" is used by two models");
@@ -188,6 +192,19 @@ StudyConfig read_study_doc(const std::string& path, toml::value doc, std::string
   }
   for (auto& m : root.table_array("model")) read_model(m, s);
   if (s.models.empty()) s.models.push_back({"default", {}});
+  // A study-wide variety: every scene takes the seed's values from it (variety_scene.hpp), under
+  // every model, as if each scene file named it.
+  if (root.has("variety")) {
+    const std::string ref = root.string("variety");
+    const bool is_file = ref.size() > 5 && ref.substr(ref.size() - 5) == ".toml";
+    try {
+      const std::string file = variety_path(is_file ? resolve_data_path(ref, path) : ref);
+      s.variety_file = std::filesystem::absolute(file).lexically_normal().string();
+      for (auto& m : s.models) m.sets.insert(m.sets.begin(), "variety=" + s.variety_file);
+    } catch (const InputError& e) {
+      root.error("variety", "= \"" + ref + "\": " + e.problems().front());
+    }
+  }
   // The budget must at least pay for screening, the smallest surrogate design (the calibrated
   // parameters only) and one confirmation.
   if (!s.targets.empty() && any_calibrated) {
@@ -230,21 +247,21 @@ StudyConfig read_study_text(const std::string& text, const std::string& path) {
 
 namespace {
 
-// The fingerprint with each scene and clump file labelled by `name_of` its path.
+// The fingerprint with each scene, variety and clump file labelled by `name_of` its path.
 std::string fingerprint_with(const StudyConfig& s, const std::function<std::string(const std::string&)>& name_of) {
   std::string all = s.text;
-  std::set<std::string> clumps;
+  std::set<std::string> clumps;  // the varieties and clump files the scenes use under every model
   for (int i = 0; i < s.scene_count(); ++i) {
     const StudyTarget& t = s.scene_of(i);
     all += "\n--- " + name_of(t.scene) + "\n" + read_text(t.scene);
     for (const auto& m : s.models) {
-      try {  // the clump file the scene names under each model, when it names one
-        toml::value scene = TomlReader::parse_file(t.scene);
+      try {
         std::vector<std::string> sets = m.sets;
         sets.insert(sets.end(), t.sets.begin(), t.sets.end());
-        apply_overrides(scene, sets);
-        if (scene.contains("particle") && scene.at("particle").contains("clump_file"))
-          clumps.insert(resolve_data_path(scene.at("particle").at("clump_file").as_string().str, t.scene));
+        const SceneFile scene = load_scene_file(t.scene, sets);
+        if (!scene.variety.variety_file.empty()) clumps.insert(scene.variety.variety_file);
+        const std::string clump = scene_clump_file(scene.doc, t.scene);
+        if (!clump.empty()) clumps.insert(clump);
       } catch (const std::exception&) {
         // an unreadable scene or override is reported when it runs
       }

@@ -29,7 +29,9 @@ struct StudyTarget {
 };
 
 // A clump model the study verifies and selects among ([[model]]): overrides applied to every scene
-// of the study (e.g. particle.clump_file=...). The first model is the one the study calibrates.
+// of the study (e.g. particle.clump_file=...; `clump_model = "manual-7"` adds particle.model=manual-7,
+// one of the variety's models; a study-wide `variety` adds variety=FILE first). The first model is
+// the one the study calibrates.
 struct StudyModel {
   std::string name;
   std::vector<std::string> sets;
@@ -84,6 +86,7 @@ struct ConfirmSettings {
 struct StudyConfig {
   std::string file;              // as given
   std::string dir;               // its folder (relative paths resolve here)
+  std::string variety_file;      // the study-wide `variety` (absolute), "" when it names none
   std::string name;
   std::uint64_t seed = 1;
   std::vector<StudyTarget> targets;
@@ -112,7 +115,8 @@ StudyConfig read_study(const std::string& path, const std::vector<std::string>& 
 StudyConfig read_study_text(const std::string& text, const std::string& path);
 
 // Fingerprint of everything that decides the study's results: the study text and the text of
-// every scene file it names (a changed scene refuses --resume as a changed study does).
+// every scene file it names, and of every variety and clump file those scenes use under each model
+// (a changed scene, variety or clump refuses --resume as a changed study does).
 std::string study_fingerprint(const StudyConfig& s);
 // The fingerprint under the older rule: each file named as the study's paths spelt it from the
 // working directory the study was started in. A store fingerprinted by that rule is accepted on

@@ -13,6 +13,13 @@ SceneFile load_scene_file(const std::string& path, const std::vector<std::string
   SceneFile f;
   f.path = path;
   f.doc = TomlReader::parse_file(path);
+  // The variety first (a --set may name another one), then its values, then every override, so
+  // that a --set of a value the variety supplied wins.
+  std::vector<std::string> variety_sets;
+  for (const std::string& s : sets)
+    if (s.rfind("variety=", 0) == 0) variety_sets.push_back(s);
+  apply_overrides(f.doc, variety_sets);
+  f.variety = apply_variety(f.doc, path);
   apply_overrides(f.doc, sets);
   auto diag = std::make_shared<ConfigDiagnostics>();
   diag->file = path;
@@ -40,7 +47,10 @@ namespace {
 // solver refuses reported as bad input naming the file.
 nlohmann::json run_with(const SceneFile& f, const SceneContext& ctx, int repeats) {
   try {
-    return run_repeated(*f.runner, f.doc, f.path, ctx, repeats);
+    nlohmann::json j = run_repeated(*f.runner, f.doc, f.path, ctx, repeats);
+    for (const std::string& r : f.variety.replaced) j["warnings"].push_back(f.path + ": " + r);
+    if (!f.variety.variety_file.empty()) j["variety"] = f.variety.variety_file;
+    return j;
   } catch (const SettingError& e) {
     throw InputError(f.path + ": " + e.what());
   }

@@ -1,5 +1,6 @@
 #pragma once
-// Runs a scene file in this process: read, apply overrides (--set paths), check `kind` (with a
+// Runs a scene file in this process: read, take the seed's values from the variety it names
+// (variety_scene.hpp; a `--set variety=...` first), apply overrides (--set paths), check `kind` (with a
 // suggestion for a misspelt one) and `repeats`, run the seeds through the scene registry and
 // return the aggregated metrics (scene_registry.hpp, run_repeated). A bad config throws
 // InputError; a failed simulation comes back with status != "ok".
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <toml.hpp>
 
+#include "calibrate/config/variety_scene.hpp"
 #include "calibrate/scenes/scene_registry.hpp"
 
 namespace seedcal {
@@ -22,6 +24,7 @@ struct SceneFile {
   std::string kind;
   const SceneRunner* runner = nullptr;
   int repeats = 1;        // the file's `repeats` key
+  VarietyDefaults variety;  // what the variety it names supplied (variety_scene.hpp)
 };
 
 SceneFile load_scene_file(const std::string& path, const std::vector<std::string>& sets);

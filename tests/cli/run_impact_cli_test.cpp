@@ -126,13 +126,33 @@ poisson_ratio = 0.3
 }
 
 // A piling scene whose only seed interaction is with the steel: the seeds would pass through each
-// other. Refused before anything runs, naming [particle] material.
+// other. Refused before anything runs, naming [particle] material. (The shipped scene names a
+// variety, which supplies the seed-seed interaction; this one gives the seed's values itself.)
 TEST(RunImpactCli, SeedSeedPairWithoutAnInteractionIsRefused) {
   const std::string dir = testing::scratch_dir("piling-no-seed-pair");
   std::string text = testing::read_text(testing::source_dir() + "/data/scenes/jinong1/piling.toml");
-  text = std::regex_replace(text, std::regex(R"(between = \["seed", "seed"\])"), R"(between = ["steel", "steel"])");
-  text = std::regex_replace(text, std::regex(R"(clump_file = "[^"]*")"),
-                            "clump_file = \"" + testing::source_dir() + "/data/bench/clump9.txt\"");
+  text = std::regex_replace(text, std::regex(R"(\nvariety = "[^"]*")"), "");
+  text += R"(
+[materials.seed]
+density_kg_m3 = 1340.0
+youngs_modulus_pa = 1.65e8
+poisson_ratio = 0.4
+
+[[interaction]]
+name = "seed_steel"
+between = ["seed", "steel"]
+restitution = 0.65
+static_friction = 0.4
+
+[[interaction]]
+name = "steel_steel"
+between = ["steel", "steel"]
+restitution = 0.5
+static_friction = 0.3
+
+[particle]
+material = "seed"
+clump_file = ")" + testing::source_dir() + "/data/bench/clump9.txt\"\n";
   testing::write_text(dir + "/piling.toml", text);
   const auto r = run_cli("run " + dir + "/piling.toml --out " + dir + "/out --set fidelity=quick");
   EXPECT_EQ(r.exit_code, 2) << r.output;
