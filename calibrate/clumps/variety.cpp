@@ -135,9 +135,9 @@ Variety read_variety(const std::string& name_or_path) {
     namespace fs = std::filesystem;
     for (const std::string& name : m->keys()) {
       const std::string file = m->string(name);
+      // Checked when a scene uses the model (variety_model_file): `seedcal clump build --variety`
+      // reads the variety before its models are built.
       const fs::path path = fs::path(v.file).parent_path() / file;
-      if (fs::path(file).is_absolute() ? !fs::exists(file) : !fs::exists(path))
-        m->error(name, "= \"" + file + "\": clump file not found (paths are relative to the variety file)");
       v.models[name] = fs::path(file).is_absolute() ? file : path.lexically_normal().string();
     }
     m->check_unknown_keys();
@@ -152,7 +152,13 @@ Variety read_variety(const std::string& name_or_path) {
 
 std::string variety_model_file(const Variety& v, const std::string& name) {
   const auto it = v.models.find(name);
-  if (it != v.models.end()) return it->second;
+  if (it != v.models.end()) {
+    if (!std::filesystem::exists(it->second))
+      throw InputError(v.file + ": models." + name + " = \"" + it->second + "\": clump file not found (a path "
+                       "relative to the variety file; `seedcal clump build --variety " + v.file + " ... --out FILE` "
+                       "writes one)");
+    return it->second;
+  }
   std::string names;
   for (const auto& [n, _] : v.models) names += (names.empty() ? "" : ", ") + n;
   throw InputError(v.file + ": [models] has no model \"" + name + "\" (it has: " +

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -77,7 +78,42 @@ TEST(StudyFingerprint, ChangesWithAClumpFileTheStudyReads) {
     std::ofstream clump(dir / "data" / "clumps" / "jinong1-manual-7.toml", std::ios::app);
     clump << "\n# edited\n";
   }
-  EXPECT_NE(fingerprint_of((dir / kStudy).string()), before);
+  const std::string clump_edited = fingerprint_of((dir / kStudy).string());
+  EXPECT_NE(clump_edited, before);
+  {  // the variety the scenes name (their seed's values and clump models)
+    std::ofstream variety(dir / "data" / "varieties" / "jinong1.toml", std::ios::app);
+    variety << "\n# edited\n";
+  }
+  EXPECT_NE(fingerprint_of((dir / kStudy).string()), clump_edited);
+  fs::remove_all(dir);
+}
+
+// A study-wide `variety` reaches every scene under every model (a variety=FILE override first), and
+// the seed it names is part of the fingerprint.
+TEST(StudyFingerprint, AStudyWideVarietyGoesToEveryScene) {
+  const fs::path root = fs::weakly_canonical(testing::source_dir());
+  const fs::path dir = fs::temp_directory_path() / ("seedcal-fingerprint-variety-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(root / "data", dir / "data", fs::copy_options::recursive);
+  const fs::path study = dir / "data" / "studies" / "jinong1-quick.toml";
+  const std::string before = fingerprint_of(study.string());
+  std::string text;
+  {
+    std::ifstream in(study);
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  {
+    std::ofstream out(study);
+    out << "variety = \"../varieties/jinong3.toml\"\n" << text;
+  }
+  const StudyConfig s = read_study(study.string());
+  EXPECT_EQ(s.variety_file, (dir / "data" / "varieties" / "jinong3.toml").lexically_normal().string());
+  for (const StudyModel& m : s.models) {
+    ASSERT_FALSE(m.sets.empty());
+    EXPECT_EQ(m.sets.front(), "variety=" + s.variety_file);
+  }
+  EXPECT_NE(study_fingerprint(s), before);
   fs::remove_all(dir);
 }
 
