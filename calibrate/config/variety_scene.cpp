@@ -84,8 +84,22 @@ std::string scene_variety_file(const toml::value& doc, const std::string& scene_
   if (!v.is_string()) throw InputError(scene_path + ": variety = " + toml::format(v) + ": must be a string (a variety file or name)");
   const std::string ref = v.as_string().str;
   const bool is_file = ref.size() > 5 && ref.substr(ref.size() - 5) == ".toml";
-  const std::string file = is_file ? variety_path(resolve_data_path(ref, scene_path)) : variety_path(ref);
-  return std::filesystem::path(file).lexically_normal().string();
+  const std::string where = scene_path + ": variety = \"" + ref + "\": ";
+  if (is_file) {
+    const std::string file = resolve_data_path(ref, scene_path);
+    if (!std::filesystem::exists(file))
+      throw InputError(where + "no such variety file (looked beside the scene file, " +
+                       (std::filesystem::path(scene_path).parent_path() / ref).lexically_normal().string() +
+                       ", and in the working directory)");
+    return std::filesystem::path(file).lexically_normal().string();
+  }
+  try {
+    return std::filesystem::path(variety_path(ref)).lexically_normal().string();
+  } catch (const InputError& e) {
+    const std::string m = e.problems().front();
+    const auto colon = m.find(": ");
+    throw InputError(where + (colon == std::string::npos ? m : m.substr(colon + 2)));
+  }
 }
 
 VarietyDefaults apply_variety(toml::value& doc, const std::string& scene_path) {
