@@ -138,11 +138,11 @@ TEST(VarietyScene, AVarietyWithoutAValueTheSceneNeedsIsAnError) {
     EXPECT_EQ(m.find("density_kg_m3"), std::string::npos) << m;  // the variety's measured density serves
   }
   try {  // a variety file that is not there: the scene, the key and where it looked
-    load_scene_file(write_scene(dir, "", dir + "/none.toml", "none.toml"), {});
+    load_scene_file(write_scene(dir, "", dir + "/absent.toml", "other.toml"), {});
     ADD_FAILURE() << "a missing variety file was accepted";
   } catch (const InputError& e) {
     const std::string m = e.what();
-    EXPECT_NE(m.find("none.toml: variety = \""), std::string::npos) << m;
+    EXPECT_NE(m.find("other.toml: variety = \""), std::string::npos) << m;
     EXPECT_NE(m.find("no such variety file"), std::string::npos) << m;
   }
 }
