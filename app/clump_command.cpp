@@ -22,7 +22,7 @@ struct BuildArgs {
   // Scanner copies of one vertex differ in their last digits, far below a micrometre; a seed's
   // scan has triangle edges of a tenth of a millimetre and more.
   double weld_m = 1e-6;
-  double smoothness = -1.0, soak_hours = 0.0, density = 0.0;
+  double smoothness = -1.0, soak_hours = 0.0, density = 0.0, min_radius_m = 0.0;
 };
 
 std::string build_command_line(const BuildArgs& a) {
@@ -35,6 +35,7 @@ std::string build_command_line(const BuildArgs& a) {
   s << " --method " << a.method;
   if (a.spheres > 0) s << " --spheres " << a.spheres;
   if (a.smoothness >= 0) s << " --smoothness " << a.smoothness;
+  if (a.min_radius_m > 0) s << " --min-radius-m " << a.min_radius_m;
   if (a.soak_hours > 0) s << " --soak-hours " << a.soak_hours;
   return s.str();
 }
@@ -73,7 +74,7 @@ void run_build(const BuildArgs& a) {
     info.scan.path = std::filesystem::relative(std::filesystem::absolute(a.scan), dir).string();
   }
   const auto t0 = std::chrono::steady_clock::now();
-  ClumpModel m = build_clump(*shape, info, density, {a.method, a.spheres, a.smoothness});
+  ClumpModel m = build_clump(*shape, info, density, {a.method, a.spheres, a.smoothness, a.min_radius_m});
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   m.name = a.name.empty() ? std::filesystem::path(a.out).stem().string() : a.name;
   m.variety = v.name;
@@ -281,6 +282,9 @@ void add_clump_command(CLI::App& app, GlobalOptions& g) {
   build->add_option("--method", b->method, "manual or auto")->required()->check(CLI::IsMember({"manual", "auto"}));
   build->add_option("--spheres", b->spheres, "sphere count: manual odd 5..15; auto a target 1..5000");
   build->add_option("--smoothness", b->smoothness, "auto: 0 (finest, ~1,800 spheres) .. 5 (coarsest)");
+  build->add_option("--min-radius-m", b->min_radius_m,
+                    "auto: no sphere smaller than this, m (a floor under the smoothness's or the count's; docs/clumps.md)")
+      ->check(CLI::Range(0.0, 0.1));
   build->add_option("--soak-hours", b->soak_hours, "scale the variety's dimensions by Table 2 growth")->check(CLI::Range(0.0, 1000.0));
   build->add_option("--name", b->name, "model name (default: the output file's stem)");
   build->add_option("--out", b->out, "clump file to write (TOML)")->required();

@@ -183,12 +183,13 @@ AutoFillResult auto_fill(const Shape& shape, const AutoFillOptions& o) {
   res.voxel_m = g.h;
   if (by_smoothness) {
     // Never below one voxel: smaller spheres than the grid can resolve would only be noise.
-    res.min_radius_m = std::max(smoothness_min_radius(shape, o.smoothness), g.h);
+    res.min_radius_m = std::max({smoothness_min_radius(shape, o.smoothness), g.h, o.min_radius_floor_m});
     res.spheres = greedy(g, cand, res.min_radius_m, o.protrusion);
   } else {
     // The count falls as r_min grows (not strictly: bisection on log r_min, keeping the fill whose
     // count is nearest the target, the larger r_min on ties).
-    double lo = std::log(g.h), hi = std::log(static_cast<double>(cand.front().d));
+    double lo = std::log(std::max(g.h, o.min_radius_floor_m)), hi = std::log(static_cast<double>(cand.front().d));
+    if (hi < lo) hi = lo;  // a floor above the deepest point: one sphere
     std::vector<SphereXYZR> best;
     double best_r = 0.0;
     auto consider = [&](double r) {

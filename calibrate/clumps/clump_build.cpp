@@ -16,6 +16,7 @@ ClumpModel build_clump(const Shape& shape, const ClumpShapeInfo& info, double de
   try {
     if (q.method == "manual") {
       if (q.smoothness >= 0.0) throw std::invalid_argument("--smoothness applies to --method auto only");
+      if (q.min_radius_floor_m > 0.0) throw std::invalid_argument("--min-radius-m applies to --method auto only");
       ManualFillOptions o;
       o.spheres = q.spheres;
       const ManualFillResult r = manual_fill(shape, o);
@@ -25,6 +26,7 @@ ClumpModel build_clump(const Shape& shape, const ClumpShapeInfo& info, double de
       AutoFillOptions o;
       o.smoothness = q.smoothness;
       o.target_spheres = q.spheres;
+      o.min_radius_floor_m = q.min_radius_floor_m;
       const AutoFillResult r = auto_fill(shape, o);
       spheres = r.spheres;
       min_radius = r.min_radius_m;

@@ -11,6 +11,7 @@ struct BuildRequest {
   std::string method = "manual";  // "manual" or "auto"
   int spheres = 0;                // manual: required; auto: a count target
   double smoothness = -1.0;       // auto: in [0, 5] (instead of spheres)
+  double min_radius_floor_m = 0.0;  // auto: no sphere's r_min below this (0: none)
 };
 
 // Throws InputError for an invalid request (message names the option and the allowed range).

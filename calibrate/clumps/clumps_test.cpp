@@ -139,6 +139,29 @@ TEST(AutoFill, SphereCountTarget) {
   EXPECT_THROW(auto_fill(e, both), std::invalid_argument);
 }
 
+// A floor under r_min: every sphere of the fill is at least the floor plus its protrusion (the
+// radius is the centre's depth, at least r_min, plus protrusion x r_min: auto_fill.cpp), by
+// smoothness and by count; the floor only removes spheres, so the fill has fewer and no more volume.
+TEST(AutoFill, MinimumRadiusFloorHoldsForEverySphere) {
+  const EllipsoidShape e(kJ1);
+  AutoFillOptions free_fill, floored;
+  free_fill.smoothness = floored.smoothness = 2;
+  floored.min_radius_floor_m = 0.5e-3;
+  const auto a = auto_fill(e, free_fill), b = auto_fill(e, floored);
+  EXPECT_EQ(b.min_radius_m, 0.5e-3);
+  for (const auto& s : b.spheres) EXPECT_GE(s.radius_m, (1.0 + floored.protrusion) * 0.5e-3 * (1 - 1e-12));
+  EXPECT_LT(b.spheres.size(), a.spheres.size());
+  EXPECT_LT(shape_overlap(e, b.spheres, 128).clump_m3, shape_overlap(e, a.spheres, 128).clump_m3);
+  AutoFillOptions by_count;
+  by_count.target_spheres = 200;  // more than the floor allows: the fill stops at the floor
+  by_count.min_radius_floor_m = 0.5e-3;
+  by_count.voxels = 100;
+  const auto c = auto_fill(e, by_count);
+  EXPECT_GE(c.min_radius_m, 0.5e-3);
+  for (const auto& s : c.spheres) EXPECT_GE(s.radius_m, 0.5e-3);
+  EXPECT_LT(c.spheres.size(), 200u);
+}
+
 TEST(ManualFill, DeterministicOddCountsWithHighIoU) {
   const EllipsoidShape e(kJ1);
   ManualFillOptions o;
@@ -212,7 +235,7 @@ TEST(ShippedClumps, NoneHasABuriedSphere) {
     for (std::size_t i = 0; i < spheres.size(); ++i)
       EXPECT_GT(union_reach_fraction(spheres, i, dirs), 0.01) << p << ", sphere " << i + 1;
   }
-  EXPECT_EQ(files, 12) << "the twelve shipped models (data/clumps/generate.sh)";
+  EXPECT_EQ(files, 15) << "the fifteen shipped models (data/clumps/generate.sh)";
   // The benchmark shape is what the comment above says: its z pair is flagged, nothing else.
   auto diag = std::make_shared<ConfigDiagnostics>();
   const toml::value doc;

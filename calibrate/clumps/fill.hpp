@@ -17,6 +17,10 @@ struct AutoFillOptions {
   int target_spheres = 0;
   int voxels = 200;  // voxels along the shape's longest side
   double protrusion = 0.3;  // radius = depth + protrusion * r_min (see auto_fill.cpp)
+  // A floor under r_min, m (0: none): no sphere smaller than this, whatever the smoothness or the
+  // count asks. A clump's smallest sphere carries a contact's whole force alone, and Hertz contact
+  // holds only while its overlap stays well below its radius (docs/clumps.md, "Smallest sphere").
+  double min_radius_floor_m = 0.0;
 };
 
 struct AutoFillResult {
