@@ -153,7 +153,9 @@ def main():
         for s in spheres:
             f.write(f"{s['x_m']} {s['y_m']} {s['z_m']} {s['radius_m']}\n")
     sets = [f"{k}={v}" for k, v in params.items() if not k.startswith("clump.")]
-    sets += ["fidelity=quick", "particle.clump_file=" + os.path.join(out_csv, "clump.txt"),
+    # LIGGGHTS pours the exported template at scale 1 (the export's header says so): seedcal pours
+    # one size too, whatever spread the variety gives the scene.
+    sets += ["fidelity=quick", "particle.clump_file=" + os.path.join(out_csv, "clump.txt"), "particle.scale_sd=0",
              f"bulk_density.quick.container_m=[{box_x}, {box_y}, {hc!r}]",
              "bulk_density.quick.collar_fraction=2.0", f"bulk_density.quick.overfill={overfill!r}",
              "bulk_density.quick.settle_energy_ratio=" + deck["settle_energy_ratio"],
