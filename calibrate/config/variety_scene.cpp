@@ -154,6 +154,14 @@ VarietyDefaults apply_variety(toml::value& doc, const std::string& scene_path) {
           out.repeated.push_back("particle.clump_file (the variety's model \"" + name + "\")");
     }
   }
+  // A rig key that is a measurement of the seed: the drum's seed mass is its fill x volume x the
+  // seeds' measured bulk density ([targets] bulk_density_kg_m3), in each rig table the scene has.
+  const auto bulk = v.targets.find("bulk_density_kg_m3");
+  if (bulk != v.targets.end() && doc.contains("kind") && doc.at("kind").is_string() &&
+      doc.at("kind").as_string().str == "drum" && doc.contains("drum") && doc.at("drum").is_table()) {
+    for (auto& [fidelity, rig] : doc.as_table().at("drum").as_table())
+      if (rig.is_table()) supply(rig, "bulk_density_kg_m3", bulk->second, "drum." + fidelity + ".bulk_density_kg_m3", out);
+  }
   if (!missing.empty()) {
     std::vector<std::string> problems;
     for (const std::string& m : missing)

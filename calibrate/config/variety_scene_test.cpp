@@ -119,6 +119,16 @@ TEST(VarietyScene, SetVarietyTakesAnotherSeed) {
   EXPECT_EQ(fs::weakly_canonical(scene_clump_file(f.doc, scene)), fs::weakly_canonical(data("clumps/jinong2-manual-11.toml")));
 }
 
+// The drum's fill mass follows the seed: its measured bulk density comes from the variety.
+TEST(VarietyScene, TheDrumFillsWithTheVarietysBulkDensity) {
+  const std::string drum = data("scenes/jinong1/drum.toml");
+  const SceneFile j1 = load_scene_file(drum, {});
+  EXPECT_EQ(number(j1.doc.at("drum").at("paper").at("bulk_density_kg_m3")), 680.75);  // Jinong 1, section 3.1
+  EXPECT_EQ(number(j1.doc.at("drum").at("quick").at("bulk_density_kg_m3")), 680.75);
+  const SceneFile j2 = load_scene_file(drum, {"variety=" + data("varieties/jinong2.toml")});
+  EXPECT_EQ(number(j2.doc.at("drum").at("paper").at("bulk_density_kg_m3")), 664.62);  // Jinong 2
+}
+
 TEST(VarietyScene, AVarietyWithoutAValueTheSceneNeedsIsAnError) {
   const std::string dir = testing::scratch_dir("variety-missing");
   // A variety with dimensions but no Table 6 values: the scene must then give them itself.
