@@ -59,14 +59,14 @@ TEST(CustomConfig, TheShippedHopperReadsAndPlansItsThreePhases) {
   EXPECT_EQ(p.phases[0].name, "fill");
   EXPECT_EQ(p.phases[1].name, "settle");
   EXPECT_EQ(p.phases[2].name, "run");
-  EXPECT_EQ(p.phases[2].simulated_s, 0.6);  // the quick table's run_time_s, exact
+  EXPECT_EQ(p.phases[2].simulated_s, 0.5);  // the quick table's run_time_s, exact
   // 0.3 kg of seeds of 0.487 g (the clump file's mass) x E[s^3] = 1.051 (scale_sd 0.1308): ~586.
   EXPECT_NEAR(p.seeds, 0.3 / (0.000486750685 * 1.0513), 2.0);
   EXPECT_GT(p.dt_s, 0.0);
 }
 
 TEST(CustomConfig, AnUnknownKeyIsRefusedWithASuggestion) {
-  const std::string all = problems(replaced(hopper_text(), "stop_s = 0.2", "stop_at_s = 0.2"), "unknown");
+  const std::string all = problems(replaced(hopper_text(), "stop_s = 0.07", "stop_at_s = 0.07"), "unknown");
   EXPECT_TRUE(has(all, "custom.wall[2].stop_at_s is not a known key (did you mean \"stop_s\"?)")) << all;
   EXPECT_TRUE(has(all, "seedcal-custom-unknown.toml:")) << all;
 }
@@ -74,7 +74,7 @@ TEST(CustomConfig, AnUnknownKeyIsRefusedWithASuggestion) {
 TEST(CustomConfig, AValueOutOfRangeNamesTheKeyValueAndRange) {
   const std::string all = problems(replaced(hopper_text(), "radius_m = 0.075", "radius_m = -0.075"), "range");
   EXPECT_TRUE(has(all, "custom.wall[1].radius_m = -0.075: must be in [0.0001, 100]")) << all;
-  const std::string run = problems(replaced(hopper_text(), "run_time_s = 0.6", "run_time_s = 0"), "run-time");
+  const std::string run = problems(replaced(hopper_text(), "run_time_s = 0.5", "run_time_s = 0"), "run-time");
   EXPECT_TRUE(has(run, "custom.quick.run_time_s = 0: must be in (0, 1000]")) << run;
 }
 
@@ -92,7 +92,7 @@ TEST(CustomConfig, OtherMistakesAreEachNamed) {
   t = replaced(t, "kind = \"discharge_rate\"", "kind = \"discharge\"");
   t = replaced(t, "fill_mass_kg = 0.3", "fill_mass_kg = 0.3\nfill_count = 100");
   t = replaced(t, "start_s = 0.0", "start_s = 0.3");  // after stop_s = 0.2
-  t = replaced(t, "region_hi_m = [0.045, 0.045, 0.22]", "region_hi_m = [0.045, -0.05, 0.22]");
+  t = replaced(t, "region_hi_m = [0.045, 0.045, 0.12]", "region_hi_m = [0.045, -0.05, 0.22]");
   t = replaced(t, "shape = \"cylinder\"", "shape = \"cone\"");
   t = replaced(t, "to_m = [0.07, 0.0, 0.0]", "to_m = [0.07, 0.0, 0.01]");
   t = replaced(t, "name = \"hopper\"", "name = \"Hopper mass\"");
