@@ -26,6 +26,7 @@ const std::map<std::string, SceneRunner>& scene_registry() {
       {"direct_shear", run_direct_shear_scene},
       {"piling", run_piling_scene},
       {"drum", run_drum_scene},
+      {"custom", run_custom_scene},
   };
   return kScenes;
 }

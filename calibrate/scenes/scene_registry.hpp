@@ -55,5 +55,6 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
 nlohmann::json run_direct_shear_scene(TomlReader& root, const SceneContext& ctx);
 nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx);
 nlohmann::json run_drum_scene(TomlReader& root, const SceneContext& ctx);
+nlohmann::json run_custom_scene(TomlReader& root, const SceneContext& ctx);
 
 }  // namespace seedcal

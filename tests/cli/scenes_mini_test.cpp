@@ -1,13 +1,14 @@
 // Miniatures of every scene kind, run end to end through the binary: the shipped Jinong 1 scenes
 // with their protocols intact (pour, settle, the direct shear's servo-controlled lid and shear, the
 // piling tube's lift, the bulk-density strike-off, the drum's rotation and frames, the free drop's
-// repeats) on rigs a few seeds across, a tenth of the seed's Young's modulus (a 2.5x longer stable
-// step, docs/time_step.md) and short times, and a two-rank MPI calibration of a two-sphere impact.
-// They exist for the sanitizer stage (scripts/test.sh, stage 2: ASan, UBSan and LeakSanitizer),
-// which leaves the quick-fidelity scene tests (label `slow`) out: every scene's code path runs
-// there in seconds. They check that each run ends with exit 0, status ok and a finite index, not
-// the index's value: a rig a few seeds across measures nothing a laboratory would (the regression
-// tests and docs/scenes/ check the values at quick and paper fidelity).
+// repeats, the custom scene's hopper) on rigs a few seeds across, a tenth of the seed's Young's
+// modulus (a 2.5x longer stable step, docs/time_step.md) and short times, and a two-rank MPI
+// calibration of a two-sphere impact. They exist for the sanitizer stage (scripts/test.sh, stage 2:
+// ASan, UBSan and LeakSanitizer), which leaves the quick-fidelity scene tests (label `slow`) out:
+// every scene's code path runs there in seconds. They check that each run ends with exit 0, status
+// ok and a finite index, not the index's value: a rig a few seeds across measures nothing a
+// laboratory would (the regression tests and docs/scenes/ check the values at quick and paper
+// fidelity).
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -90,6 +91,22 @@ TEST(ScenesMini, FreeDropRepeats) {
 
 // The MPI executor with two ranks (rank 0 plans and writes the store, rank 1 runs every simulation)
 // gives the local run's calibration value for value: each simulation is deterministic for its seed.
+// The custom scene's hopper (data/scenes/examples/hopper.toml) with 10 g of seeds: the mesh, the
+// cylinder and the sliding gate, the sink and every measurement, for a few tens of milliseconds.
+TEST(ScenesMini, CustomHopper) {
+  const std::string out = scratch_dir("mini-custom");
+  const auto r = run_cli("run " + source_dir() +
+                         "/data/scenes/examples/hopper.toml --set fidelity=quick --seed 1 --threads 1 --out " + out +
+                         " --set custom.quick.fill_mass_kg=0.01 --set custom.quick.settle_max_time_s=0.02"
+                         " --set custom.quick.run_time_s=0.04" + kSoft);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto j = nlohmann::json::parse(read_text(out + "/metrics.json"));
+  EXPECT_EQ(j["status"], "ok") << j.dump(1);
+  expect_finite(j, "hopper_final_kg");
+  EXPECT_TRUE(std::filesystem::exists(out + "/custom.svg"));
+  std::filesystem::remove_all(out);
+}
+
 TEST(ScenesMini, MpiCalibrationWithTwoRanksMatchesTheLocalOne) {
   if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not installed";
   const std::string dir = scratch_dir("mini-mpi");
