@@ -25,7 +25,7 @@ std::string hopper_text() {
   const fs::path dir = fs::absolute("data/scenes/examples");
   std::string t = read_text((dir / "hopper.toml").string());
   t = std::regex_replace(t, std::regex("\"hopper_cone.stl\""), "\"" + (dir / "hopper_cone.stl").string() + "\"");
-  t = std::regex_replace(t, std::regex("\"../../clumps/"), "\"" + fs::absolute("data/clumps").string() + "/");
+  t = std::regex_replace(t, std::regex("\"../../varieties/"), "\"" + fs::absolute("data/varieties").string() + "/");
   return t;
 }
 
