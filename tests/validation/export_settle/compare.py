@@ -175,9 +175,14 @@ def main():
             sc_cmd += ["--set", s]
         jobs.append((f"seedcal pour {k + 1}", sc_cmd, None))
 
+    # Each job gets its own Open MPI session directory: jobs that start and end side by side (here
+    # and in the other MPI tests of the suite) share /tmp/ompi.HOST.UID otherwise, and one job's
+    # finalize can remove it while another creates its own folder inside it.
     def run_job(job):
         name, cmd, cwd = job
-        r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True)
+        tmp = tempfile.mkdtemp(prefix="ompi-", dir=work)
+        env = dict(os.environ, OMPI_MCA_orte_tmpdir_base=tmp, OMPI_MCA_prte_tmpdir_base=tmp)
+        r = subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, env=env)
         return name, r.returncode, r.stdout + r.stderr
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
