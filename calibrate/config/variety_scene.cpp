@@ -88,7 +88,7 @@ std::string scene_variety_file(const toml::value& doc, const std::string& scene_
   if (is_file) {
     const std::string file = resolve_data_path(ref, scene_path);
     if (!std::filesystem::exists(file))
-      throw InputError(where + "no such variety file (looked beside the scene file, " +
+      throw InputError(where + "no such variety file (looked beside the file that names it, " +
                        (std::filesystem::path(scene_path).parent_path() / ref).lexically_normal().string() +
                        ", and in the working directory)");
     return std::filesystem::path(file).lexically_normal().string();

@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "calibrate/clumps/clump_source.hpp"
-#include "calibrate/clumps/variety.hpp"
+#include "calibrate/config/variety_scene.hpp"
 #include "calibrate/scenes/scene_file.hpp"
 #include "calibrate/config/overrides.hpp"
 #include "calibrate/config/toml_reader.hpp"
@@ -195,14 +195,12 @@ StudyConfig read_study_doc(const std::string& path, toml::value doc, std::string
   // A study-wide variety: every scene takes the seed's values from it (variety_scene.hpp), under
   // every model, as if each scene file named it.
   if (root.has("variety")) {
-    const std::string ref = root.string("variety");
-    const bool is_file = ref.size() > 5 && ref.substr(ref.size() - 5) == ".toml";
+    root.string("variety");  // read here (a string), resolved as a scene's is: relative to this file
     try {
-      const std::string file = variety_path(is_file ? resolve_data_path(ref, path) : ref);
-      s.variety_file = std::filesystem::absolute(file).lexically_normal().string();
+      s.variety_file = std::filesystem::absolute(scene_variety_file(s.doc, path)).lexically_normal().string();
       for (auto& m : s.models) m.sets.insert(m.sets.begin(), "variety=" + s.variety_file);
     } catch (const InputError& e) {
-      root.error("variety", "= \"" + ref + "\": " + e.problems().front());
+      for (const std::string& problem : e.problems()) root.diagnostics().problems.push_back(problem);
     }
   }
   // The budget must at least pay for screening, the smallest surrogate design (the calibrated
