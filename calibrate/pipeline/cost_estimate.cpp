@@ -107,6 +107,36 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   StageRuns confirm{"confirmation", confirm_runs, std::max(0, s.confirm.max_evaluations - before), 0.0};
   confirm.cpu_s = T > 0 ? static_cast<double>(confirm_runs) / T * per_point : 0.0;
   e.stages.push_back(confirm);
+  // The pick along the solution curve (curve_stage.cpp), expected when one target has two
+  // parameters to calibrate: the named test at every point, or every candidate at the curve's
+  // ends and (priced as the dearest of them) the rest. Its test then needs no verification runs
+  // under the first model.
+  const std::vector<int> candidates = curve_candidates(s);
+  int curve_scene = -1;
+  if (T == 1 && s.verify.curve_points > 0 && !candidates.empty()) {
+    int calibrated = 0;
+    for (const StudyParameter& p : s.parameters) calibrated += p.calibrate ? 1 : 0;
+    if (calibrated == 2) {
+      StageRuns curve{"curve", 0, 0, 0.0};
+      const int n = s.verify.curve_points;
+      curve_scene = candidates.front();
+      for (const int c : candidates)
+        if (cost[0][static_cast<std::size_t>(c)] > cost[0][static_cast<std::size_t>(curve_scene)]) curve_scene = c;
+      if (candidates.size() > 1) {
+        for (const int c : candidates) {
+          curve.runs += 2;
+          curve.cpu_s += 2.0 * cost[0][static_cast<std::size_t>(c)];
+        }
+        curve.runs += n - 2;
+        curve.cpu_s += (n - 2) * cost[0][static_cast<std::size_t>(curve_scene)];
+      } else {
+        curve.runs = n;
+        curve.cpu_s = n * cost[0][static_cast<std::size_t>(curve_scene)];
+      }
+      curve.at_most = curve.runs;
+      e.stages.push_back(curve);
+    }
+  }
   // Verification: every scene under every model, its replicates each.
   if (!s.checks.empty() || s.models.size() > 1) {
     StageRuns verify{"verification", 0, 0, 0.0};
@@ -114,21 +144,31 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
       for (int t = 0; t < s.scene_count(); ++t) {
         const StudyTarget& test = s.scene_of(t);
         const int reps = test.replicates > 0 && t >= T ? test.replicates : s.verify.replicates;
+        verify.at_most += reps;
+        if (m == 0 && t == curve_scene) continue;
         verify.runs += reps;
         verify.cpu_s += reps * cost[m][static_cast<std::size_t>(t)];
       }
-    verify.at_most = verify.runs;
     e.stages.push_back(verify);
   }
   for (const StageRuns& r : e.stages) {
     e.runs += r.runs;
     e.cpu_s += r.cpu_s;
   }
-  // The most: the calibration's budget (every run of it a point of every target), then verification.
+  // The most: the calibration's budget (every run of it a point of every target), then the curve
+  // and the whole verification.
   const int calibration_most = std::max(s.confirm.max_evaluations, before);
-  e.runs_at_most = calibration_most + (e.stages.back().stage == "verification" ? e.stages.back().runs : 0);
-  e.cpu_s_at_most = (T > 0 ? static_cast<double>(calibration_most) / T * per_point : 0.0) +
-                    (e.stages.back().stage == "verification" ? e.stages.back().cpu_s : 0.0);
+  e.runs_at_most = calibration_most;
+  e.cpu_s_at_most = T > 0 ? static_cast<double>(calibration_most) / T * per_point : 0.0;
+  for (const StageRuns& r : e.stages) {
+    if (r.stage != "curve" && r.stage != "verification") continue;
+    e.runs_at_most += r.at_most;
+    e.cpu_s_at_most += r.cpu_s;
+  }
+  if (curve_scene >= 0 && e.stages.back().stage == "verification") {
+    const StudyTarget& test = s.scene_of(curve_scene);
+    e.cpu_s_at_most += (test.replicates > 0 ? test.replicates : s.verify.replicates) * cost[0][static_cast<std::size_t>(curve_scene)];
+  }
   return e;
 }
 

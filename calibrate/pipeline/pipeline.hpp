@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "calibrate/pipeline/study_evaluator.hpp"
+#include "doe/rsm/level_curve.hpp"
 
 namespace seedcal {
 
@@ -30,6 +31,13 @@ struct PipelineState {
   nlohmann::json solution;          // the solve stage's report
   nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
   nlohmann::json posterior;         // after confirmation: intervals and identification (posterior_stage.cpp)
+  // The pick along the solution curve (curve_stage.cpp). The curve: one target's level set through
+  // the confirmed point, box-coded, traced by the posterior stage on its refitted surrogate.
+  doe::CurvePath curve_path;
+  int curve_scene = -1;             // the verification test run along it (StudyConfig::scene_of); -1: none
+  doe::StraightLine curve_line;     // that test's response against the normalised arc length
+  nlohmann::json curve;             // the stage's report
+  nlohmann::json curve_verification;  // that test's verification under the first model, from the curve's runs
   bool converged = false;
   int rounds = 0;
   int calibration_runs = -1;        // DEM runs of stages 1-5 (set when confirmation ends)
@@ -72,6 +80,16 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
 // After confirmation: the posterior of the kept parameters over the surrogate box, their 95 %
 // credible intervals and whether each is identified (posterior_stage.cpp; docs/calibrate.md).
 nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// After the posterior, when one target leaves two kept parameters on a curve: a verification test
+// (the study's `curve_test`, else the one that answers most along the curve) runs at points along
+// it; the line fitted to its response picks the point where it meets the test's experiment, and
+// sets st.chosen there. Its runs count as that test's verification under the first model
+// (curve_stage.cpp; docs/calibrate.md, "The point on the curve"). The report says why when it does not apply.
+nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir);
+// The verification tests (StudyConfig::scene_of) that can pick the point: the study's curve_test,
+// else those with an experimental value, and of them the ones with a laboratory sd when any has
+// one (their answers along the curve are then compared in sd).
+std::vector<int> curve_candidates(const StudyConfig& s);
 // Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
 // the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
 // All runs form one batch in model order; whenever the first k < models models have every run,

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "calibrate/pipeline/pipeline.hpp"
+#include "doe/rsm/level_curve.hpp"
 #include "doe/surrogate/gaussian_process.hpp"
 #include "doe/surrogate/posterior.hpp"
 
@@ -106,6 +107,45 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     report["targets"].push_back(tr);
   }
 
+  // One target, two kept parameters: its solution curve through the confirmed point on the
+  // refitted surrogate's mean (for the pick along it, curve_stage.cpp), traced once.
+  if (s.targets.size() == 1 && k == 2 && !st.curve_path.usable() && st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
+    doe::LevelCurveOptions lo;
+    for (int q = 0; q < 2; ++q)
+      lo.anchor(q) = std::clamp((st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q), -1.0, 1.0);
+    const auto gp = gps.front();
+    st.curve_path = doe::trace_level_curve([gp](const Eigen::VectorXd& u) { return gp->predict(u).mean; }, s.targets[0].value, lo);
+  }
+  // The test run along that curve (curve_stage.cpp), once it has run: its line in the arc length,
+  // read at the projection of each point of the box onto the curve, is one more piece of evidence.
+  nlohmann::json curve_entry;
+  if (st.curve_scene >= 0 && st.curve_path.usable()) {
+    const StudyTarget& test = s.scene_of(st.curve_scene);
+    const doe::CurvePath path = st.curve_path;
+    const doe::StraightLine line = st.curve_line;
+    // A noise-free test fits its line exactly: the mean's variance is floored at rounding.
+    const double floor_var = std::pow(1e-9 * std::fabs(test.value), 2);
+    doe::TargetEvidence e;
+    e.response = [path, line, floor_var](const Eigen::VectorXd& u) {
+      doe::GpPrediction g = line.predict(path.project(u.head<2>()));
+      g.variance = std::max(g.variance, floor_var);
+      return g;
+    };
+    e.value = test.value;
+    e.value_variance = test.sd > 0.0 ? test.sd * test.sd / test.lab_repeats : 0.0;
+    evidence.push_back(e);
+    curve_entry = {{"name", test.name}, {"role", "verification test along the solution curve"}, {"runs", line.n},
+                   {"run_noise_sd", std::sqrt(line.sigma2)}, {"run_noise_df", line.df},
+                   {"run_noise_source", "the residuals of the straight line along the curve"}, {"value", test.value},
+                   {"response", "a straight line in the arc length along the curve, at each point's projection onto it"}};
+    if (test.sd > 0.0) {
+      curve_entry["lab_sd"] = test.sd;
+      curve_entry["uncertainty"] = "the laboratory's sd, and the line's";
+    } else {
+      curve_entry["uncertainty"] = "the line's only: the study gives no laboratory sd for this test";
+    }
+  }
+
   doe::PosteriorOptions po;
   po.lower = Eigen::VectorXd::Constant(k, -1.0);
   po.upper = Eigen::VectorXd::Constant(k, 1.0);
@@ -122,6 +162,13 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
       hi = std::max(hi, m);
     }
     report["targets"][t]["response_range_over_box"] = {lo, hi};
+  }
+  if (!curve_entry.is_null()) {
+    report["targets"].push_back(curve_entry);
+    // What the target said alone, before the test along its curve joined.
+    if (st.posterior.is_object() && st.posterior.contains("calibrated_interval"))
+      report["target_alone"] = {{"calibrated_interval", st.posterior["calibrated_interval"]},
+                                {"identified", st.posterior["identified"]}};
   }
 
   // In natural units (box_point: the surrogate box's coded -1 .. 1 to the parameters' values).

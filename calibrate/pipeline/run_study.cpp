@@ -76,6 +76,7 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
     d.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
     j["posterior"] = d;
   }
+  if (st.curve.is_object()) j["curve"] = st.curve;
   j["tolerance"] = s.confirm.tolerance;
   if (!st.verification.is_null()) j["verification"] = st.verification;
   if (!st.selection.is_null()) j["model_selection"] = st.selection;
@@ -257,6 +258,25 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
     progress.log("posterior: " + line);
   }
   checkpoint("confirm");
+
+  // One target leaving two parameters on a curve: a verification test picks the point along it,
+  // and the posterior is taken again with it.
+  if (!s.checks.empty()) {
+    const auto curve = run_curve_pick(ev, st, store, o.out_dir);
+    if (curve.contains("skipped")) {
+      progress.log("curve: not run: " + curve["skipped"].get<std::string>());
+    } else {
+      progress.log("curve: " + curve["test"].get<std::string>() + " along the solution curve, picked " + curve["picked"].dump() +
+                   (curve.contains("note") ? " (" + curve["note"].get<std::string>() + ")" : ""));
+      const auto again = run_posterior(ev, st, store);
+      std::string line;
+      const nlohmann::json identified = again.value("identified", nlohmann::json::object());
+      for (const auto& [path, ok] : identified.items())
+        line += (line.empty() ? "" : ", ") + path + (ok.get<bool>() ? " identified" : " not identified");
+      progress.log("posterior with " + curve["test"].get<std::string>() + ": " + line);
+    }
+    checkpoint("curve");
+  }
 
   // Verification and model selection run only when the study asks for them (tests or models).
   if (!s.checks.empty() || s.models.size() > 1) {

@@ -188,6 +188,25 @@ StudyConfig read_study_doc(const std::string& path, toml::value doc, std::string
     s.verify.error_margin = t->number("error_margin", Range::closed(0.0, 1.0), s.verify.error_margin);
     s.verify.cost_margin = t->number("cost_margin", Range::closed(0.0, 0.9), s.verify.cost_margin);
     for (auto& c : t->table_array("test")) read_check(c, s);
+    // The pick along the solution curve (curve_stage.cpp): 0 turns it off; a line needs at least
+    // 3 points for a residual variance.
+    const auto points = t->integer("curve_points", 0, 50, s.verify.curve_points);
+    if (points == 1 || points == 2) t->error("curve_points", "= " + std::to_string(points) + ": must be 0 (off) or at least 3 (a line and its scatter)");
+    s.verify.curve_points = static_cast<int>(points);
+    s.verify.curve_test = t->string("curve_test", s.verify.curve_test);
+    if (!s.verify.curve_test.empty()) {
+      bool found = false;
+      std::string names;
+      for (const auto& c : s.checks) {
+        found = found || c.name == s.verify.curve_test;
+        names += (names.empty() ? "" : ", ") + ("\"" + c.name + "\"") + (c.has_value ? "" : " (no value)");
+        if (c.name == s.verify.curve_test && !c.has_value)
+          t->error("curve_test", "= \"" + s.verify.curve_test + "\": that test has no experimental value to pick a point by");
+      }
+      if (!found)
+        t->error("curve_test", "= \"" + s.verify.curve_test + "\": not one of the [[verify.test]] names (" +
+                                   (names.empty() ? std::string("the study has none") : names) + ")");
+    }
     t->check_unknown_keys();
   }
   for (auto& m : root.table_array("model")) read_model(m, s);

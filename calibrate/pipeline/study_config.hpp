@@ -41,6 +41,11 @@ struct VerifySettings {
   int replicates = 2;            // DEM runs per verification test and model (fresh seeds)
   double error_margin = 0.02;    // selection: cheapest model within this of the lowest mean |error|
   double cost_margin = 0.10;     // ... when it saves at least this fraction of the best's CPU time
+  // One target, two kept parameters it does not both identify: the verification test named here
+  // (empty: the one that answers most along the curve, curve_stage.cpp) runs at `curve_points`
+  // points along the target's solution curve and picks the point there (0: off).
+  int curve_points = 4;
+  std::string curve_test;
 };
 
 struct StudyParameter {

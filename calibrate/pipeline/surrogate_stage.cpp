@@ -24,6 +24,7 @@
 #include "doe/regression/anova.hpp"
 #include "doe/regression/model_terms.hpp"
 #include "doe/rsm/surface_optimum.hpp"
+#include "doe/rsm/level_curve.hpp"
 #include "doe/surrogate/gaussian_process.hpp"
 #include "store/errors.hpp"
 
@@ -142,32 +143,18 @@ TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen
   return out;
 }
 
-// For two unknowns: every u2 in [-1, 1] with f(u1, u2) = target, for 21 values of u1 (scan 201
-// points, then bisection on each sign change).
-nlohmann::json trace_curve(const doe::Surface& f, double target, const PipelineState& st, const StudyConfig& s) {
+// For two unknowns: the curve f(u) = target across the box (doe/rsm/level_curve.hpp), the branch
+// through the chosen point, in natural units and in order along the curve.
+nlohmann::json trace_curve(const doe::Surface& f, double target, const Eigen::VectorXd& chosen_u, const PipelineState& st,
+                           const StudyConfig& s) {
+  doe::LevelCurveOptions o;
+  o.anchor = chosen_u.head<2>();
+  const doe::CurvePath path = doe::trace_level_curve(f, target, o);
   nlohmann::json pts = nlohmann::json::array();
   const Eigen::VectorXd mid = box_mid(st), half = box_half(st);
-  for (int i = 0; i <= 20; ++i) {
-    Eigen::VectorXd u(2);
-    u(0) = -1.0 + 0.1 * i;
-    auto g = [&](double v) { u(1) = v; return f(u) - target; };
-    double va = -1.0, ga = g(va);
-    for (int j = 1; j <= 200; ++j) {
-      const double vb = -1.0 + 0.01 * j, gb = g(vb);
-      if (ga == 0.0 || ga * gb < 0.0) {
-        double lo = va, hi = vb, glo = ga;
-        for (int it = 0; it < 60 && ga != 0.0; ++it) {
-          const double m = 0.5 * (lo + hi), gm = g(m);
-          if (glo * gm <= 0.0) hi = m; else { lo = m; glo = gm; }
-        }
-        const double root = ga == 0.0 ? va : 0.5 * (lo + hi);
-        pts.push_back({{s.parameters[static_cast<std::size_t>(st.kept[0])].path, mid(0) + half(0) * u(0)},
-                       {s.parameters[static_cast<std::size_t>(st.kept[1])].path, mid(1) + half(1) * root}});
-      }
-      va = vb;
-      ga = gb;
-    }
-  }
+  for (const Eigen::Vector2d& u : path.points())
+    pts.push_back({{s.parameters[static_cast<std::size_t>(st.kept[0])].path, mid(0) + half(0) * u(0)},
+                   {s.parameters[static_cast<std::size_t>(st.kept[1])].path, mid(1) + half(1) * u(1)}});
   return pts;
 }
 
@@ -379,7 +366,7 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
                               : "of the points where the surrogate meets the target, the one closest to the prior (box-coded distance)";
     solution["multistart_solutions"] = nlohmann::json::array();
     for (const auto& u : sol.solution_set) solution["multistart_solutions"].push_back(to_natural(u));
-    if (k == 2) solution["curve"] = trace_curve(fits[0].surface, o.target, st, s);
+    if (k == 2) solution["curve"] = trace_curve(fits[0].surface, o.target, sol.chosen, st, s);
     if (!sol.found) solution["note"] = "the surrogate does not reach the target inside the box: the closest point is chosen";
   } else {
     std::vector<doe::Surface> fs;

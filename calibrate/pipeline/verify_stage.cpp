@@ -103,7 +103,7 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
 nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore& store,
                              const std::vector<EvaluationRecord>& records,
                              const std::vector<std::vector<std::size_t>>& first, int done,
-                             const std::function<int(int)>& reps_of) {
+                             const std::function<int(int)>& reps_of, const std::function<int(int, int)>& runs_of) {
   const int models = static_cast<int>(s.models.size());
   const int scenes = s.scene_count();
   nlohmann::json rows = nlohmann::json::array();
@@ -115,7 +115,7 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
     bool complete = true;
     for (int t = 0; t < scenes; ++t) {
       std::vector<const EvaluationRecord*> runs;
-      for (int rep = 0; rep < reps_of(t); ++rep) {
+      for (int rep = 0; rep < runs_of(m, t); ++rep) {
         const auto& r = records[first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] + static_cast<std::size_t>(rep)];
         runs.push_back(&r);
         if (r.status == "ok" && r.metrics.contains("bodies") && r.metrics.contains("spheres") &&
@@ -123,7 +123,11 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
           spheres = r.metrics["spheres"].get<double>() / r.metrics["bodies"].get<double>();
       }
       double cpu_t = 0.0;
-      nlohmann::json j = summarise_test(s, t, runs, &cpu_t);
+      // The test run along the solution curve: its runs there are its verification under the
+      // first model (curve_stage.cpp).
+      nlohmann::json j = m == 0 && t == st.curve_scene && runs_of(m, t) == 0 ? st.curve_verification
+                                                                                : summarise_test(s, t, runs, &cpu_t);
+      if (m == 0 && t == st.curve_scene && runs_of(m, t) == 0) cpu_t = j["cpu_seconds"].get<double>();
       cpu += cpu_t;
       if (!j["rel_error"].is_null()) {
         sum_abs += std::fabs(j["rel_error"].get<double>());
@@ -160,9 +164,10 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
     for (int m = 0; m < done; ++m) {
       const auto& j = rows[static_cast<std::size_t>(m)]["tests"][static_cast<std::size_t>(t)];
       const int n = j["n"].get<int>();
-      if (n >= 2 && !j["sd"].is_null()) {
-        ss += (n - 1) * std::pow(j["sd"].get<double>(), 2);
-        df += n - 1;
+      const int sd_df = j.value("sd_df", n - 1);
+      if (sd_df >= 1 && !j["sd"].is_null()) {
+        ss += sd_df * std::pow(j["sd"].get<double>(), 2);
+        df += sd_df;
       }
     }
     if (df > 0) pooled_sd[static_cast<std::size_t>(t)] = std::sqrt(ss / df);
@@ -184,7 +189,9 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
         no_scatter.insert(s.scene_of(t).name);
         continue;
       }
-      var += std::pow(sd / std::sqrt(static_cast<double>(n)) / std::fabs(s.scene_of(t).value), 2);
+      // The mean's standard error: sd / sqrt(n), or the curve line's own at the point.
+      const double se = j.contains("mean_se") ? j["mean_se"].get<double>() : sd / std::sqrt(static_cast<double>(n));
+      var += std::pow(se / std::fabs(s.scene_of(t).value), 2);
       ++with_scatter;
     }
     const double se = with_scatter > 0 ? std::sqrt(var) / with_value : std::numeric_limits<double>::quiet_NaN();
@@ -252,6 +259,9 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
   selection["verified_at"] = at;
   selection["verified_at_note"] = "every model is verified at the values calibrated with the first model (\"" +
                                   s.models.front().name + "\"); a model that needs other values shows it as a larger error";
+  if (st.curve_scene >= 0)
+    selection["verified_at_note"] = selection["verified_at_note"].get<std::string>() + "; \"" + s.scene_of(st.curve_scene).name +
+                                    "\" of \"" + s.models.front().name + "\" is read from its runs along the solution curve";
   const int shown = chosen >= 0 ? chosen : 0;
   st.verification = {{"model", s.models[static_cast<std::size_t>(shown)].name}, {"replicates", s.verify.replicates}, {"point", at},
                      {"tests", rows[static_cast<std::size_t>(shown)]["tests"]}};
@@ -271,8 +281,11 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
     const int r = s.scene_of(t).replicates;
     return t >= static_cast<int>(s.targets.size()) && r > 0 ? r : s.verify.replicates;
   };
+  // The test run along the solution curve has its first model's runs already (curve_stage.cpp).
+  const std::function<int(int, int)> runs_of = [&](int m, int t) { return m == 0 && t == st.curve_scene ? 0 : reps_of(t); };
   int planned = 0;
-  for (int t = 0; t < scenes; ++t) planned += models * reps_of(t);
+  for (int m = 0; m < models; ++m)
+    for (int t = 0; t < scenes; ++t) planned += runs_of(m, t);
   ev.announce("verify", planned);
   // Every request is planned in model order and run as one batch (a long run of one model
   // overlaps the next model's runs on the --jobs slots). As soon as every run of the first k
@@ -284,7 +297,7 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
   for (int m = 0; m < models; ++m) {
     for (int t = 0; t < scenes; ++t) {
       first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)] = requests.size();
-      for (int rep = 0; rep < reps_of(t); ++rep) {
+      for (int rep = 0; rep < runs_of(m, t); ++rep) {
         const std::string dir = rep == 0 ? out_dir + "/scenes/" + path_slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
                                                path_slug(s.scene_of(t).name)
                                          : std::string();
@@ -303,11 +316,11 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
   const auto unneeded = [&](std::size_t i) -> std::string {
     const int m = model_of[i];
     for (int t = 0; t < scenes; ++t) {
-      if (!s.scene_of(t).has_value) continue;
+      if (!s.scene_of(t).has_value || runs_of(m, t) == 0) continue;
       const std::size_t f = first[static_cast<std::size_t>(m)][static_cast<std::size_t>(t)];
       std::string why;
       bool failed_all = true;
-      for (int rep = 0; rep < reps_of(t) && failed_all; ++rep) {
+      for (int rep = 0; rep < runs_of(m, t) && failed_all; ++rep) {
         const std::size_t k = f + static_cast<std::size_t>(rep);
         const bool failed = in[k] && arrived[k].status != "skipped" && !std::isfinite(record_metric(s, arrived[k]));
         failed_all = failed;
@@ -328,11 +341,11 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
     const int before = complete;
     while (complete < models && missing[static_cast<std::size_t>(complete)] == 0) ++complete;
     if (complete > before && complete < models) {
-      select_models(s, st, store, arrived, first, complete, reps_of);
+      select_models(s, st, store, arrived, first, complete, reps_of, runs_of);
       if (on_model_done) on_model_done(complete);
     }
   }, unneeded);
-  return select_models(s, st, store, records, first, models, reps_of);
+  return select_models(s, st, store, records, first, models, reps_of, runs_of);
 }
 
 }  // namespace seedcal

@@ -235,6 +235,70 @@ TEST(CalibrateCli, JointTargetsIdentifyTwoUnknowns) {
   std::filesystem::remove_all(dir);
 }
 
+// One target, two unknowns: the Hertz contact time t ~ (rho / E)^(2/5) leaves the curve rho / E =
+// const; along it the peak force F ~ E^(2/5) rho^(3/5) ~ E (Johnson, Contact Mechanics, sec. 11.4)
+// grows, so a peak-force test picks the point on the curve and both parameters are identified.
+TEST(CalibrateCli, AVerificationTestPicksThePointOnTheCurve) {
+  const std::string dir = scratch_dir("calibrate-curve");
+  const double e0 = 4.1e10, rho0 = 2350.0;
+  const auto m = impact_metrics(e0, rho0, dir + "/truth");
+  const double force = m["max_normal_force_n"].get<double>();
+  char verify[1024];
+  // The test's sd: 1 % of the force, a laboratory's scatter; the interval it leaves on E is about
+  // 2 x 1 % wide, since F ~ E along the curve.
+  std::snprintf(verify, sizeof verify, R"(
+[verify]
+replicates = 1
+curve_points = 4
+
+[[verify.test]]
+name = "peak force"
+scene = "%s%s"
+%s
+metric = "max_normal_force_n"
+value = %.17g
+sd = %.17g
+)", source_dir().c_str(), kScene, kSceneSets, force, 0.01 * force);
+  const auto r = calibrate_study(dir, study_text(target("contact_duration_s", m["contact_duration_s"].get<double>()), 0.005) + verify);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  ASSERT_TRUE(s.contains("curve")) << s.dump(1);
+  const auto& c = s["curve"];
+  ASSERT_FALSE(c.contains("skipped")) << c.dump(1);
+  EXPECT_EQ(c["test"], "peak force");
+  EXPECT_EQ(c["points"].size(), 4u);
+  EXPECT_TRUE(c["answers_along_curve"].get<bool>()) << c.dump(1);
+  EXPECT_FALSE(c.contains("at_end")) << c.dump(1);
+  // The pick: within the test's 1 % sd of the truth on E (F ~ E), and rho with it along the curve
+  // (t ~ (rho / E)^(2/5): the confirmed contact time's 0.5 % tolerance allows 1.25 % on rho / E).
+  EXPECT_NEAR(s["calibrated"]["materials.glass.youngs_modulus_pa"].get<double>() / e0, 1.0, 0.02) << c.dump(1);
+  EXPECT_NEAR(s["calibrated"]["materials.glass.density_kg_m3"].get<double>() / rho0, 1.0, 0.035) << c.dump(1);
+  for (const auto& [path, truth] : {std::pair{"materials.glass.youngs_modulus_pa", e0},
+                                    std::pair{"materials.glass.density_kg_m3", rho0}}) {
+    EXPECT_TRUE(s["identified"][path].get<bool>()) << s["posterior"].dump(1);
+    const auto iv = s["calibrated_interval"][path];
+    EXPECT_LE(iv[0].get<double>(), truth) << path << " " << iv.dump();
+    EXPECT_GE(iv[1].get<double>(), truth) << path << " " << iv.dump();
+  }
+  // The target alone left the curve: it did not identify both.
+  ASSERT_TRUE(s["posterior"].contains("target_alone")) << s["posterior"].dump(1);
+  bool both = true;
+  for (const auto& item : s["posterior"]["target_alone"]["identified"].items()) both = both && item.value().get<bool>();
+  EXPECT_FALSE(both) << s["posterior"]["target_alone"].dump(1);
+  // The curve's runs are the peak force's verification under the first model: no runs of it in
+  // the verification stage (1 replicate of the target there).
+  const auto& tests = s["verification"]["tests"];
+  ASSERT_EQ(tests.size(), 2u);
+  EXPECT_EQ(tests[1]["n"], 4);
+  EXPECT_NE(tests[1]["source"].get<std::string>().find("along the solution curve"), std::string::npos);
+  EXPECT_EQ(s["evaluations_total"].get<int>(), s["evaluations"].get<int>() + 4 + 1) << s.dump(1);
+  // The estimate priced the curve's runs and left them out of the verification.
+  const std::string log = read_text(dir + "/out/calibrate.log");
+  EXPECT_NE(log.find("plan: curve: 4 DEM runs"), std::string::npos) << log;
+  EXPECT_NE(log.find("plan: verification: 1 DEM runs (at most 2)"), std::string::npos) << log;
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
   const std::string dir = scratch_dir("calibrate-bad");
   struct Case {
