@@ -26,6 +26,7 @@ Document build_report(const StudyData& study) {
   add_surface_plot_sections(study, doc);
   add_confirmation_section(study, doc);
   add_posterior_plot_section(study, doc);
+  add_curve_section(study, doc);
   add_summary_section(study, doc);
   add_verification_sections(study, doc);
   add_scenes_section(study, doc);

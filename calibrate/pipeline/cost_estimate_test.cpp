@@ -41,17 +41,23 @@ TEST(CostEstimate, QuickStudyRunsFollowItsPlan) {
     EXPECT_NEAR(c.cpu_s, c.plan.sphere_steps() * c.cpu_s_per_sphere_step, 1e-12 * c.cpu_s);
   }
   // The stages as the study file sets them: the screening design with its replicates, no ascent
-  // expected, the verification's every test under every model with its replicates.
+  // expected, the heap at the curve's points, the verification's every test under every model with
+  // its replicates but the heap under the first model (its runs along the curve serve).
   EXPECT_EQ(stage(e, "screening").runs, s.screen.runs * s.screen.replicates * targets);
   EXPECT_EQ(stage(e, "ascent").runs, 0);
   EXPECT_EQ(stage(e, "ascent").at_most, s.ascent.max_steps * s.screen.replicates * targets);
-  int verify = 0;
+  ASSERT_EQ(s.verify.curve_test, "piling");
+  EXPECT_EQ(stage(e, "curve").runs, s.verify.curve_points);
+  int verify = 0, heap_first_model = 0;
   for (std::size_t m = 0; m < s.models.size(); ++m)
     for (int t = 0; t < s.scene_count(); ++t) {
       const StudyTarget& test = s.scene_of(t);
-      verify += test.replicates > 0 && t >= targets ? test.replicates : s.verify.replicates;
+      const int reps = test.replicates > 0 && t >= targets ? test.replicates : s.verify.replicates;
+      verify += reps;
+      if (m == 0 && test.name == "piling") heap_first_model = reps;
     }
-  EXPECT_EQ(stage(e, "verification").runs, verify);
+  EXPECT_EQ(stage(e, "verification").runs, verify - heap_first_model);
+  EXPECT_EQ(stage(e, "verification").at_most, verify);
   int sum = 0;
   double cpu = 0.0;
   for (const StageRuns& r : e.stages) {

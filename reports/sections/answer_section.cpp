@@ -29,11 +29,20 @@ void add_answer_section(const StudyData& d, Document& doc) {
   }
   if (!cal.rows.empty()) {
     for (const auto& t : member(posterior, "targets"))
-      cal.notes.push_back("Target " + format_value(t.value("name", nlohmann::json())) + ": " +
+      cal.notes.push_back(std::string(t.contains("role") ? "Test " : "Target ") + format_value(t.value("name", nlohmann::json())) + ": " +
                           format_value(t.value("uncertainty", nlohmann::json())) + "; run-to-run sd " +
                           format_value(t.value("run_noise_sd", nlohmann::json())) + " from " +
                           format_value(t.value("run_noise_source", nlohmann::json())) + ".");
     s.table(std::move(cal));
+    const auto& curve = member(j, "curve");
+    if (!curve.empty() && !curve.contains("skipped")) {
+      std::string picked;
+      for (const auto& [name, v] : member(curve, "picked").items()) picked += (picked.empty() ? "" : ", ") + name + " " + format_value(v);
+      s.paragraph("The point on the solution curve was picked by \"" + format_value(curve.value("test", nlohmann::json())) + "\" (" +
+                  std::to_string(curve.value("points", nlohmann::json::array()).size()) + " runs along it): " + picked +
+                  (curve.contains("note") ? " (" + format_value(curve["note"]) + ")" : "") +
+                  "; the intervals above combine the target with that test (section \"The point on the solution curve\").");
+    }
   } else {
     s.note("No calibrated values yet (the study stopped at stage " + j.value("stage_reached", std::string("?")) + ").");
   }

@@ -13,6 +13,7 @@ void add_ascent_section(const StudyData& d, Document& doc);        // steepest a
 void add_surrogate_sections(const StudyData& d, Document& doc);    // RS design; ANOVA and fit statistics
 void add_surface_plot_sections(const StudyData& d, Document& doc); // contour of the surface; LOO plot
 void add_posterior_plot_section(const StudyData& d, Document& doc); // posterior density, 95 % region, intervals
+void add_curve_section(const StudyData& d, Document& doc);          // the point on the solution curve
 void add_confirmation_section(const StudyData& d, Document& doc);  // optimiser and confirmation trace
 void add_summary_section(const StudyData& d, Document& doc);       // calibrated values, confirmation, cost
 void add_verification_sections(const StudyData& d, Document& doc); // verification; model selection

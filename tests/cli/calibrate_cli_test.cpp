@@ -325,6 +325,13 @@ TEST(CalibrateCli, BadStudyFilesExitTwoNamingTheKey) {
        parameter("glass_glass.restitusion", 0.6, 0.9), "restitusion"},
       {t + parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n") +
        parameter("glass_glass.restitution", 0.6, 0.9, "max = 1.5\n"), "upper limits (max)"},
+      // The pick along the curve: a line needs three points; the test must be one of the study's.
+      {t + parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n") + "[verify]\ncurve_points = 2\n",
+       "verify.curve_points = 2: must be 0 (off) or at least 3"},
+      {t + parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n") +
+       "[verify]\ncurve_test = \"heap\"\n[[verify.test]]\nname = \"peak\"\nscene = \"" + source_dir() + kScene +
+       "\"\nmetric = \"max_normal_force_n\"\nvalue = 1.0\n",
+       "verify.curve_test = \"heap\": not one of the [[verify.test]] names (\"peak\")"},
   };
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const std::string file = dir + "/bad" + std::to_string(i) + ".toml";
@@ -379,6 +386,9 @@ max_evaluations = 60
 [verify]
 replicates = 2
 error_margin = 0.02
+# The screening may keep the restitution beside E; the pick along the curve is tested on its own
+# (AVerificationTestPicksThePointOnTheCurve): here every test runs in the verification.
+curve_points = 0
 
 [[verify.test]]
 name = "peak force"
