@@ -117,7 +117,7 @@ nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& sto
         at += (k ? ", " : "") + s.parameters[static_cast<std::size_t>(st.kept[k])].path + " = " +
               nlohmann::json(last(static_cast<Eigen::Index>(k))).dump();
       report["unreachable"] = true;
-      store.set_stage("ascent", report);
+      store.set_stage(st.stage_prefix + "ascent", report);
       char msg[512];
       std::snprintf(msg, sizeof msg, "%s: target %s = %.6g cannot be reached inside the parameters' min/max: the "
                     "steepest %s path stopped at the limits (%s) with %.6g (screening centre %.6g); widen min/max of "
@@ -133,7 +133,7 @@ nlohmann::json run_ascent(StudyEvaluator& ev, PipelineState& st, StudyStore& sto
     box[s.parameters[static_cast<std::size_t>(st.kept[k])].path] = {st.box_lo(static_cast<Eigen::Index>(k)),
                                                                     st.box_hi(static_cast<Eigen::Index>(k))};
   report["surrogate_box"] = box;
-  store.set_stage("ascent", report);
+  store.set_stage(st.stage_prefix + "ascent", report);
   return report;
 }
 

@@ -126,12 +126,12 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
       ev.note(line);
     }
     st.rounds = round;
-    store.set_stage("confirm", report);
+    store.set_stage(st.stage_prefix + "confirm", report);
     if (st.converged) { report["stop_reason"] = "converged"; break; }
     const bool hold = s.confirm.hold_unless_significant && !significant_miss(report["rounds"].back());
     const int next_cost = ((hold ? 0 : s.confirm.batch) + s.confirm.replicates) * nt;
     if (round >= s.confirm.max_rounds) { report["stop_reason"] = "round limit"; break; }
-    if (ev.runs_used() + next_cost > s.confirm.max_evaluations) { report["stop_reason"] = "budget of DEM runs"; break; }
+    if (ev.runs_used() - st.runs_before + next_cost > s.confirm.max_evaluations) { report["stop_reason"] = "budget of DEM runs"; break; }
     report["rounds"].back()["next"] = hold ? "hold: every target's interval holds zero; more replicates here"
                                            : "move: infill, refit and solve again";
     if (hold) {
@@ -173,7 +173,7 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
     // box) keeps its replicates.
     if (st.chosen != before) pool.clear();
   }
-  store.set_stage("confirm", report);
+  store.set_stage(st.stage_prefix + "confirm", report);
   return report;
 }
 

@@ -137,6 +137,29 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
       e.stages.push_back(curve);
     }
   }
+  // [verify] calibrate_each_model: every other model repeats the calibration and the curve under
+  // its own overrides (the same runs, each priced under that model).
+  const bool each_model = s.verify.calibrate_each_model && s.models.size() > 1;
+  if (each_model) {
+    int runs = 0, most = 0, curve_runs = 0;
+    double points = 0.0;  // calibration points of every target
+    for (const StageRuns& r : e.stages) {
+      if (r.stage == "curve") {
+        curve_runs = r.runs;
+        continue;
+      }
+      runs += r.runs;
+      most += r.at_most;
+      points += T > 0 ? static_cast<double>(r.runs) / T : 0.0;
+    }
+    for (std::size_t m = 1; m < s.models.size(); ++m) {
+      double per_point_m = 0.0;
+      for (int t = 0; t < T; ++t) per_point_m += cost[m][static_cast<std::size_t>(t)];
+      StageRuns r{"calibration of \"" + s.models[m].name + "\"", runs + curve_runs, most + curve_runs, points * per_point_m};
+      if (curve_scene >= 0) r.cpu_s += curve_runs * cost[m][static_cast<std::size_t>(curve_scene)];
+      e.stages.push_back(r);
+    }
+  }
   // Verification: every scene under every model, its replicates each.
   if (!s.checks.empty() || s.models.size() > 1) {
     StageRuns verify{"verification", 0, 0, 0.0};
@@ -145,7 +168,7 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
         const StudyTarget& test = s.scene_of(t);
         const int reps = test.replicates > 0 && t >= T ? test.replicates : s.verify.replicates;
         verify.at_most += reps;
-        if (m == 0 && t == curve_scene) continue;
+        if ((m == 0 || each_model) && t == curve_scene) continue;
         verify.runs += reps;
         verify.cpu_s += reps * cost[m][static_cast<std::size_t>(t)];
       }
@@ -161,13 +184,17 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   e.runs_at_most = calibration_most;
   e.cpu_s_at_most = T > 0 ? static_cast<double>(calibration_most) / T * per_point : 0.0;
   for (const StageRuns& r : e.stages) {
-    if (r.stage != "curve" && r.stage != "verification") continue;
+    const bool other_model = r.stage.rfind("calibration of ", 0) == 0;
+    if (r.stage != "curve" && r.stage != "verification" && !other_model) continue;
     e.runs_at_most += r.at_most;
-    e.cpu_s_at_most += r.cpu_s;
+    // Another model's calibration at most: its budget, priced as its expected runs are.
+    e.cpu_s_at_most += other_model && r.runs > 0 ? r.cpu_s * r.at_most / r.runs : r.cpu_s;
   }
   if (curve_scene >= 0 && e.stages.back().stage == "verification") {
     const StudyTarget& test = s.scene_of(curve_scene);
-    e.cpu_s_at_most += (test.replicates > 0 ? test.replicates : s.verify.replicates) * cost[0][static_cast<std::size_t>(curve_scene)];
+    const int reps = test.replicates > 0 ? test.replicates : s.verify.replicates;
+    for (std::size_t m = 0; m < (each_model ? s.models.size() : 1); ++m)
+      e.cpu_s_at_most += reps * cost[m][static_cast<std::size_t>(curve_scene)];
   }
   return e;
 }

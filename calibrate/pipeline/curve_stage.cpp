@@ -5,7 +5,9 @@
 // answers differently along that curve (the heap's angle answers rolling friction) can pick the
 // point, as the paper's check against the piling test does by eye. Here:
 //   1. the curve u(s), s in [0, 1] its normalised arc length in the box-coded surrogate box, is the
-//      level set of the target's refitted surrogate through the confirmed point (posterior stage);
+//      level set of the target's refitted surrogate through the confirmed point (posterior stage),
+//      or, where that surrogate's mean misses the target everywhere in the box (a response flat
+//      within its scatter), the curve of the last solve round, which chose the confirmed point;
 //   2. the test (the study's `curve_test`, else the verification test with an experimental value
 //      whose runs at the curve's two ends differ most, in laboratory sd when the tests give one)
 //      runs once at each of `curve_points` evenly spaced values of s, under the first model;
@@ -67,7 +69,7 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   const auto skip = [&](const std::string& why) {
     report["skipped"] = why;
     st.curve = report;
-    store.set_stage("curve", report);
+    store.set_stage(st.stage_prefix + "curve", report);
     return report;
   };
   if (s.verify.curve_points == 0) return skip("[verify] curve_points = 0");
@@ -87,7 +89,8 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   const int n = s.verify.curve_points;
   const auto natural_at = [&](double sv) { return full_point(st, box_point(st, st.curve_path.at(sv))); };
   const auto dir_of = [&](int scene, int i) {
-    return out_dir + "/curve/" + path_slug(s.scene_of(scene).name) + "/point_" + std::to_string(i + 1);
+    return out_dir + "/curve/" + path_slug(s.models[static_cast<std::size_t>(st.model)].name) + "/" + path_slug(s.scene_of(scene).name) +
+           "/point_" + std::to_string(i + 1);
   };
   std::vector<double> svals(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) svals[static_cast<std::size_t>(i)] = static_cast<double>(i) / (n - 1);
@@ -101,8 +104,8 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
     // The curve's two ends for every candidate; the one whose ends differ most is run along it.
     std::vector<EvalRequest> requests;
     for (const int c : candidates) {
-      requests.push_back(ev.plan_one("curve", natural_at(0.0), c, 0, dir_of(c, 0)));
-      requests.push_back(ev.plan_one("curve", natural_at(1.0), c, 0, dir_of(c, n - 1)));
+      requests.push_back(ev.plan_one("curve", natural_at(0.0), c, st.model, dir_of(c, 0)));
+      requests.push_back(ev.plan_one("curve", natural_at(1.0), c, st.model, dir_of(c, n - 1)));
     }
     ev.announce("curve (the ends, every test)", static_cast<int>(requests.size()));
     const auto records = ev.run(requests);
@@ -135,7 +138,7 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
     std::vector<int> index;
     for (int i = 0; i < n; ++i) {
       if (have[static_cast<std::size_t>(i)]) continue;
-      requests.push_back(ev.plan_one("curve", natural_at(svals[static_cast<std::size_t>(i)]), scene, 0, dir_of(scene, i)));
+      requests.push_back(ev.plan_one("curve", natural_at(svals[static_cast<std::size_t>(i)]), scene, st.model, dir_of(scene, i)));
       index.push_back(i);
     }
     ev.announce("curve (" + test.name + ")", static_cast<int>(requests.size()));
@@ -167,7 +170,8 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   report["metric"] = test.metric;
   report["experimental_mean"] = test.value;
   report["experimental_sd"] = test.sd > 0.0 ? nlohmann::json(test.sd) : nlohmann::json(nullptr);
-  report["model"] = s.models.front().name;
+  report["model"] = s.models[static_cast<std::size_t>(st.model)].name;
+  report["curve_source"] = st.curve_source;
   report["points"] = points;
   if (!failures.empty()) report["failures"] = failures;
   if (xs.size() < 3) return skip("fewer than 3 of the " + std::to_string(n) + " runs along the curve gave a result: no line");
@@ -218,7 +222,7 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   st.curve_verification = v;
   report["verification"] = v;
   st.curve = report;
-  store.set_stage("curve", report);
+  store.set_stage(st.stage_prefix + "curve", report);
   return report;
 }
 

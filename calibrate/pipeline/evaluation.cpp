@@ -109,4 +109,12 @@ double record_metric(const StudyConfig& study, const EvaluationRecord& r) {
 
 int record_target(const EvaluationRecord& r) { return r.metrics.value("study_target", -1); }
 
+int record_model(const StudyConfig& study, const EvaluationRecord& r) {
+  const std::string name = r.metrics.value("study_model", std::string());
+  if (name.empty()) return 0;
+  for (std::size_t m = 0; m < study.models.size(); ++m)
+    if (study.models[m].name == name) return static_cast<int>(m);
+  return -1;
+}
+
 }  // namespace seedcal

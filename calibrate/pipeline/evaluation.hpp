@@ -48,5 +48,8 @@ EvaluationRecord evaluate(const StudyConfig& study, const EvalRequest& request, 
 double record_metric(const StudyConfig& study, const EvaluationRecord& r);
 // The target index a record belongs to (from its metrics), -1 when unknown.
 int record_target(const EvaluationRecord& r);
+// The model a record ran under (StudyConfig::models; its `study_model`, 0 when it names none), -1
+// when it names a model the study does not have.
+int record_model(const StudyConfig& study, const EvaluationRecord& r);
 
 }  // namespace seedcal

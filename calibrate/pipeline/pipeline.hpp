@@ -17,6 +17,12 @@
 namespace seedcal {
 
 struct PipelineState {
+  // The model this state calibrates (StudyConfig::models; 0 unless [verify] calibrate_each_model),
+  // the prefix of its stages' names in the store ("" for the first model) and the DEM runs made
+  // before its calibration began (its budget counts its own runs).
+  int model = 0;
+  std::string stage_prefix;
+  int runs_before = 0;
   std::vector<int> kept;            // study parameter indices the later stages vary
   Eigen::VectorXd nominal;          // natural values of every parameter (held when not kept)
   Eigen::VectorXd first_order;      // screening: coded first-order coefficients of the kept factors
@@ -34,6 +40,7 @@ struct PipelineState {
   // The pick along the solution curve (curve_stage.cpp). The curve: one target's level set through
   // the confirmed point, box-coded, traced by the posterior stage on its refitted surrogate.
   doe::CurvePath curve_path;
+  std::string curve_source;         // which surrogate the curve was traced on
   int curve_scene = -1;             // the verification test run along it (StudyConfig::scene_of); -1: none
   doe::StraightLine curve_line;     // that test's response against the normalised arc length
   nlohmann::json curve;             // the stage's report
@@ -94,7 +101,10 @@ std::vector<int> curve_candidates(const StudyConfig& s);
 // the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
 // All runs form one batch in model order; whenever the first k < models models have every run,
 // st holds the partial selection over them and `on_model_done` (if set) is called with k.
+// With `calibrated` (one state per model, [verify] calibrate_each_model; entry 0 is st), each model
+// is verified at its own calibrated point and its own curve's runs serve its curve test.
 nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir,
-                                const std::function<void(int models_done)>& on_model_done = {});
+                                const std::function<void(int models_done)>& on_model_done = {},
+                                const std::vector<const PipelineState*>& calibrated = {});
 
 }  // namespace seedcal

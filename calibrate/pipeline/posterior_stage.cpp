@@ -52,7 +52,7 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     int df = 0;
     double noise_ss = doe::pooled_replicate_variance(U, y, &df) * df;
     std::string source = df > 0 ? std::to_string(df) + " df from replicates at the design's centre and the confirmation points" : "";
-    const auto& screen = store.stages().value("screen", nlohmann::json::object());
+    const auto& screen = store.stages().value(st.stage_prefix + "screen", nlohmann::json::object());
     if (screen.contains("targets") && t < screen["targets"].size()) {
       const auto& sc = screen["targets"][t];
       if (sc.contains("run_noise_sd") && sc.contains("run_noise_df") && sc["run_noise_df"].get<int>() > 0) {
@@ -77,7 +77,7 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
       tr["note"] = "fewer than 3 runs in the surrogate box: no posterior";
       report["targets"].push_back(tr);
       report["error"] = "target \"" + tg.name + "\" has fewer than 3 runs in the surrogate box";
-      store.set_stage("posterior", report);
+      store.set_stage(st.stage_prefix + "posterior", report);
       return report;
     }
     doe::GpOptions o;
@@ -115,6 +115,22 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
       lo.anchor(q) = std::clamp((st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q), -1.0, 1.0);
     const auto gp = gps.front();
     st.curve_path = doe::trace_level_curve([gp](const Eigen::VectorXd& u) { return gp->predict(u).mean; }, s.targets[0].value, lo);
+    st.curve_source = "the posterior's surrogate (noise fixed at the run-to-run variance)";
+    if (!st.curve_path.usable() && st.solution.contains("curve") && st.solution["curve"].size() >= 2) {
+      // Its mean misses the target everywhere in the box (the runs there scatter about a level
+      // within the noise of the target): the curve the last solve round traced, on the surrogate
+      // that chose the confirmed point, is the one the calibration has.
+      std::vector<Eigen::Vector2d> pts;
+      for (const auto& c : st.solution["curve"]) {
+        Eigen::Vector2d u;
+        for (int q = 0; q < 2; ++q)
+          u(q) = (c[s.parameters[static_cast<std::size_t>(st.kept[static_cast<std::size_t>(q)])].path].get<double>() -
+                  0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q);
+        pts.push_back(u);
+      }
+      st.curve_path = doe::CurvePath(std::move(pts));
+      st.curve_source = "the last solve round's surrogate: the posterior's mean does not meet the target in the box (over the box it moves less than the runs scatter)";
+    }
   }
   // The test run along that curve (curve_stage.cpp), once it has run: its line in the arc length,
   // read at the projection of each point of the box onto the curve, is one more piece of evidence.
@@ -241,7 +257,7 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     report["region_grid"] = grid;
   }
   st.posterior = report;
-  store.set_stage("posterior", report);
+  store.set_stage(st.stage_prefix + "posterior", report);
   return report;
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <unistd.h>
 
@@ -37,8 +38,9 @@ StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std:
   return StudyStore::create(path, h);
 }
 
-nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const StudyEvaluator& ev,
-                          const StudyStore& store, const std::string& stage_reached, const std::string& hash) {
+nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const std::vector<PipelineState>& others,
+                          const StudyEvaluator& ev, const StudyStore& store, const std::string& stage_reached,
+                          const std::string& hash) {
   nlohmann::json j;
   j["schema_version"] = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
   j["study"] = s.name;
@@ -77,6 +79,29 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const S
     j["posterior"] = d;
   }
   if (st.curve.is_object()) j["curve"] = st.curve;
+  // [verify] calibrate_each_model: every model's own calibration, the first's as above.
+  if (s.verify.calibrate_each_model && s.models.size() > 1) {
+    nlohmann::json per = nlohmann::json::array();
+    for (std::size_t m = 0; m < s.models.size(); ++m) {
+      const PipelineState& sm = m == 0 ? st : others[m];
+      nlohmann::json e = {{"model", s.models[m].name}, {"stage_prefix", sm.stage_prefix}};
+      if (sm.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
+        nlohmann::json cal = nlohmann::json::object();
+        for (const int p : sm.kept) cal[s.parameters[static_cast<std::size_t>(p)].path] = sm.chosen(p);
+        e["calibrated"] = cal;
+        e["converged"] = sm.converged;
+        e["confirmed"] = sm.confirmed.is_null() ? nlohmann::json::object() : sm.confirmed;
+        e["evaluations"] = sm.calibration_runs;
+      }
+      if (sm.posterior.is_object()) {
+        e["calibrated_interval"] = sm.posterior.value("calibrated_interval", nlohmann::json::object());
+        e["identified"] = sm.posterior.value("identified", nlohmann::json::object());
+      }
+      if (sm.curve.is_object() && sm.curve.contains("picked")) e["curve_picked"] = sm.curve["picked"];
+      per.push_back(e);
+    }
+    j["calibration_per_model"] = per;
+  }
   j["tolerance"] = s.confirm.tolerance;
   if (!st.verification.is_null()) j["verification"] = st.verification;
   if (!st.selection.is_null()) j["model_selection"] = st.selection;
@@ -177,6 +202,60 @@ nlohmann::json cost_json(const StudyCostEstimate& e) {
           {"probe_cpu_s", e.probe_cpu_s}, {"stages", stages}, {"scenes", scenes}};
 }
 
+// Stages 1-5, the posterior and the pick along the solution curve, for the model `st` calibrates;
+// `checkpoint` writes the summary after each.
+void calibrate_stages(StudyEvaluator& ev, PipelineState& st, StudyStore& store, Progress& progress, const std::string& out_dir,
+                      const std::function<nlohmann::json(const std::string&)>& checkpoint) {
+  const StudyConfig& s = ev.study();
+  const std::string who = st.model == 0 ? "" : " [" + s.models[static_cast<std::size_t>(st.model)].name + "]";
+  const auto log_identified = [&](const std::string& what, const nlohmann::json& post) {
+    const nlohmann::json identified = post.value("identified", nlohmann::json::object());
+    std::string line;
+    for (const auto& [path, ok] : identified.items())
+      line += (line.empty() ? "" : ", ") + path + (ok.get<bool>() ? " identified" : " not identified");
+    if (!line.empty()) progress.log(what + who + ": " + line);
+  };
+  const int targets = static_cast<int>(s.targets.size());
+  progress.stage("screen" + who, s.screen.runs * s.screen.replicates * targets);
+  const auto screen = run_screening(ev, st, store);
+  std::string kept;
+  for (const auto& k : screen["kept"]) kept += (kept.empty() ? "" : ", ") + k.get<std::string>();
+  progress.log("screen" + who + ": kept " + kept);
+  checkpoint("screen");
+
+  progress.stage("ascent" + who, s.ascent.max_steps * s.screen.replicates * targets);
+  const auto ascent = run_ascent(ev, st, store);
+  progress.log("ascent" + who + ": " + ascent.value("stop_reason", ascent.value("skipped", std::string())));
+  checkpoint("ascent");
+
+  const auto design_runs = static_cast<int>(surrogate_design(s, static_cast<int>(st.kept.size())).rows());
+  progress.stage("surrogate" + who, design_runs * s.surrogate.replicates * targets);
+  run_surrogate_design(ev, st, store);
+  const auto solved = fit_and_solve(ev, st, store, "solve_round_1");
+  progress.log("surrogate" + who + ": " + st.surrogate_kind + ", chosen " + solved["solution"]["chosen"].dump());
+  checkpoint("solve");
+
+  const auto confirm = run_confirmation(ev, st, store);
+  st.calibration_runs = ev.runs_used() - st.runs_before;
+  progress.log("confirm" + who + ": " + confirm.value("stop_reason", std::string()) + ", " +
+               std::to_string(st.calibration_runs) + " DEM runs");
+  log_identified("posterior", run_posterior(ev, st, store));
+  checkpoint("confirm");
+
+  // One target leaving two parameters on a curve: a verification test picks the point along it,
+  // and the posterior is taken again with it.
+  if (s.checks.empty()) return;
+  const auto curve = run_curve_pick(ev, st, store, out_dir);
+  if (curve.contains("skipped")) {
+    progress.log("curve" + who + ": not run: " + curve["skipped"].get<std::string>());
+  } else {
+    progress.log("curve" + who + ": " + curve["test"].get<std::string>() + " along the solution curve, picked " +
+                 curve["picked"].dump() + (curve.contains("note") ? " (" + curve["note"].get<std::string>() + ")" : ""));
+    log_identified("posterior with " + curve["test"].get<std::string>(), run_posterior(ev, st, store));
+  }
+  checkpoint("curve");
+}
+
 }  // namespace
 
 nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_executor) {
@@ -219,63 +298,31 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
   StudyEvaluator ev(s, store, *executor, progress);
   if (o.trajectories.any()) ev.record_trajectories(o.trajectories, o.out_dir);
   PipelineState st;
+  std::vector<PipelineState> others(s.models.size());  // [verify] calibrate_each_model: models 1 ..
   auto checkpoint = [&](const std::string& stage) {
     sessions[session]["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     store.set_stage("sessions", sessions);
-    const nlohmann::json j = summary_of(s, st, ev, store, stage, hash);
+    const nlohmann::json j = summary_of(s, st, others, ev, store, stage, hash);
     write_json_atomic(o.out_dir + "/summary.json", j);
     return j;
   };
-  const int plan_screen = s.screen.runs * s.screen.replicates * static_cast<int>(s.targets.size());
-  progress.stage("screen", plan_screen);
-  const auto screen = run_screening(ev, st, store);
-  std::string kept;
-  for (const auto& k : screen["kept"]) kept += (kept.empty() ? "" : ", ") + k.get<std::string>();
-  progress.log("screen: kept " + kept);
-  checkpoint("screen");
-
-  progress.stage("ascent", s.ascent.max_steps * s.screen.replicates * static_cast<int>(s.targets.size()));
-  const auto ascent = run_ascent(ev, st, store);
-  progress.log("ascent: " + ascent.value("stop_reason", ascent.value("skipped", std::string())));
-  checkpoint("ascent");
-
-  const auto design_runs = static_cast<int>(surrogate_design(s, static_cast<int>(st.kept.size())).rows());
-  progress.stage("surrogate", design_runs * s.surrogate.replicates * static_cast<int>(s.targets.size()));
-  run_surrogate_design(ev, st, store);
-  const auto solved = fit_and_solve(ev, st, store, "solve_round_1");
-  progress.log("surrogate: " + st.surrogate_kind + ", chosen " + solved["solution"]["chosen"].dump());
-  checkpoint("solve");
-
-  const auto confirm = run_confirmation(ev, st, store);
-  progress.log("confirm: " + confirm.value("stop_reason", std::string()) + ", " + std::to_string(ev.runs_used()) +
-               " DEM runs");
-  st.calibration_runs = ev.runs_used();
-  const auto post = run_posterior(ev, st, store);
-  if (post.contains("identified")) {
-    std::string line;
-    for (const auto& [path, ok] : post["identified"].items())
-      line += (line.empty() ? "" : ", ") + path + (ok.get<bool>() ? " identified" : " not identified");
-    progress.log("posterior: " + line);
-  }
-  checkpoint("confirm");
-
-  // One target leaving two parameters on a curve: a verification test picks the point along it,
-  // and the posterior is taken again with it.
-  if (!s.checks.empty()) {
-    const auto curve = run_curve_pick(ev, st, store, o.out_dir);
-    if (curve.contains("skipped")) {
-      progress.log("curve: not run: " + curve["skipped"].get<std::string>());
-    } else {
-      progress.log("curve: " + curve["test"].get<std::string>() + " along the solution curve, picked " + curve["picked"].dump() +
-                   (curve.contains("note") ? " (" + curve["note"].get<std::string>() + ")" : ""));
-      const auto again = run_posterior(ev, st, store);
-      std::string line;
-      const nlohmann::json identified = again.value("identified", nlohmann::json::object());
-      for (const auto& [path, ok] : identified.items())
-        line += (line.empty() ? "" : ", ") + path + (ok.get<bool>() ? " identified" : " not identified");
-      progress.log("posterior with " + curve["test"].get<std::string>() + ": " + line);
+  calibrate_stages(ev, st, store, progress, o.out_dir, checkpoint);
+  // [verify] calibrate_each_model: every other model gets the same stages under its own overrides
+  // (its stages in the store under "model:NAME/"), then is verified at its own point.
+  std::vector<const PipelineState*> calibrated;
+  if (s.verify.calibrate_each_model && s.models.size() > 1) {
+    calibrated.push_back(&st);
+    for (std::size_t m = 1; m < s.models.size(); ++m) {
+      PipelineState& sm = others[m];
+      sm.model = static_cast<int>(m);
+      sm.stage_prefix = "model:" + s.models[m].name + "/";
+      sm.runs_before = ev.runs_used();
+      ev.set_calibration_model(sm.model);
+      progress.log("calibrating model \"" + s.models[m].name + "\"");
+      calibrate_stages(ev, sm, store, progress, o.out_dir, checkpoint);
+      calibrated.push_back(&sm);
     }
-    checkpoint("curve");
+    ev.set_calibration_model(0);
   }
 
   // Verification and model selection run only when the study asks for them (tests or models).
@@ -285,7 +332,7 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
                    " models verified, provisional choice " + st.selection["chosen"].dump());
       checkpoint("verify");
       write_study_report(o, progress);
-    });
+    }, calibrated);
     progress.log("verify: chosen model " + selection["chosen"].dump() + ", " + std::to_string(ev.runs_used()) +
                  " DEM runs in all");
   }

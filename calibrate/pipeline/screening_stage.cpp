@@ -205,7 +205,7 @@ nlohmann::json run_screening(StudyEvaluator& ev, PipelineState& st, StudyStore& 
   nlohmann::json kept = nlohmann::json::array();
   for (int j : st.kept) kept.push_back(names[static_cast<std::size_t>(j)]);
   report["kept"] = kept;
-  store.set_stage("screen", report);
+  store.set_stage(st.stage_prefix + "screen", report);
   return report;
 }
 

@@ -194,6 +194,7 @@ StudyConfig read_study_doc(const std::string& path, toml::value doc, std::string
     if (points == 1 || points == 2) t->error("curve_points", "= " + std::to_string(points) + ": must be 0 (off) or at least 3 (a line and its scatter)");
     s.verify.curve_points = static_cast<int>(points);
     s.verify.curve_test = t->string("curve_test", s.verify.curve_test);
+    s.verify.calibrate_each_model = t->boolean("calibrate_each_model", s.verify.calibrate_each_model);
     if (!s.verify.curve_test.empty()) {
       bool found = false;
       std::string names;

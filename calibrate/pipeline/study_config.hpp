@@ -46,6 +46,9 @@ struct VerifySettings {
   // points along the target's solution curve and picks the point there (0: off).
   int curve_points = 4;
   std::string curve_test;
+  // Each model calibrated (stages 1-5, posterior, curve) under its own overrides before its
+  // verification, instead of every model verified at the first model's values.
+  bool calibrate_each_model = false;
 };
 
 struct StudyParameter {

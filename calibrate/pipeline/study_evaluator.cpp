@@ -33,7 +33,7 @@ std::vector<EvalRequest> StudyEvaluator::plan(const std::string& stage, const Ei
   std::vector<EvalRequest> out;
   for (int rep = 0; rep < replicates; ++rep)
     for (std::size_t t = 0; t < study_.targets.size(); ++t)
-      out.push_back(plan_one(stage, natural, static_cast<int>(t), 0,
+      out.push_back(plan_one(stage, natural, static_cast<int>(t), calibration_model_,
                              rep == 0 && !round_dir.empty() ? round_dir + "/" + path_slug(study_.targets[t].name)
                                                             : std::string()));
   return out;

@@ -45,6 +45,10 @@ class StudyEvaluator {
 
   // Tells the progress display a new stage (or round) begins with `planned` runs.
   void announce(const std::string& stage, int planned) { progress_.stage(stage, planned); }
+  // The model plan() runs the targets under (StudyConfig::models; 0 by default): the calibration of
+  // each model with [verify] calibrate_each_model.
+  void set_calibration_model(int model) { calibration_model_ = model; }
+  int calibration_model() const { return calibration_model_; }
   void note(const std::string& message) { progress_.log(message); }
 
   int runs_used() const { return used_; }        // DEM runs of this plan so far (replicates included)
@@ -66,7 +70,8 @@ class StudyEvaluator {
   std::uint64_t counter_ = 0;
   StudyTrajectories trajectories_;
   std::string trajectory_dir_;
-  int confirmations_ = 0;  // plan("confirm") calls so far: the rounds' folder numbers
+  int confirmations_ = 0;
+  int calibration_model_ = 0;  // plan("confirm") calls so far: the rounds' folder numbers
   std::map<std::uint64_t, std::size_t> stored_;  // seed -> index in the store
   std::vector<EvaluationRecord> history_;
   int used_ = 0, reused_ = 0;

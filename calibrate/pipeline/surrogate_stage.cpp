@@ -237,7 +237,7 @@ void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, in
   const Eigen::VectorXd mid = box_mid(st), half = box_half(st);
   std::vector<double> rows, ys;
   for (const auto& r : ev.history()) {
-    if (r.stage == "screen" || r.stage == "verify" || record_target(r) != target) continue;
+    if (r.stage == "screen" || r.stage == "verify" || record_target(r) != target || record_model(s, r) != st.model) continue;
     const double v = record_metric(s, r);
     if (!std::isfinite(v)) continue;
     const Eigen::VectorXd x = ev.inputs_vector(r);
@@ -288,7 +288,7 @@ nlohmann::json run_surrogate_design(StudyEvaluator& ev, PipelineState& st, Study
     for (Eigen::Index i = 0; i < y.rows(); ++i) col.push_back(std::isfinite(y(i, t)) ? nlohmann::json(y(i, t)) : nlohmann::json(nullptr));
     report["responses"].push_back(col);
   }
-  store.set_stage("surrogate_design", report);
+  store.set_stage(st.stage_prefix + "surrogate_design", report);
   return report;
 }
 
@@ -313,7 +313,7 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
       std::string why;
       int failed = 0;
       for (const auto& r : ev.history())
-        if (record_target(r) == static_cast<int>(t) && r.status != "ok") {
+        if (record_target(r) == static_cast<int>(t) && record_model(s, r) == st.model && r.status != "ok") {
           if (why.empty()) why = r.status + ": " + r.message;
           ++failed;
         }
@@ -396,7 +396,7 @@ nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& 
   report["solution"] = solution;
   report["surface_grid"] = surface_grid(fits, st, s, names, chosen_u);
   st.solution = solution;
-  store.set_stage(label, report);
+  store.set_stage(st.stage_prefix + label, report);
   return report;
 }
 

@@ -103,7 +103,8 @@ nlohmann::json summarise_test(const StudyConfig& s, int scene, const std::vector
 nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore& store,
                              const std::vector<EvaluationRecord>& records,
                              const std::vector<std::vector<std::size_t>>& first, int done,
-                             const std::function<int(int)>& reps_of, const std::function<int(int, int)>& runs_of) {
+                             const std::function<int(int)>& reps_of, const std::function<int(int, int)>& runs_of,
+                             const std::function<const PipelineState&(int)>& state_of, bool each_model) {
   const int models = static_cast<int>(s.models.size());
   const int scenes = s.scene_count();
   nlohmann::json rows = nlohmann::json::array();
@@ -125,9 +126,9 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
       double cpu_t = 0.0;
       // The test run along the solution curve: its runs there are its verification under the
       // first model (curve_stage.cpp).
-      nlohmann::json j = m == 0 && t == st.curve_scene && runs_of(m, t) == 0 ? st.curve_verification
-                                                                                : summarise_test(s, t, runs, &cpu_t);
-      if (m == 0 && t == st.curve_scene && runs_of(m, t) == 0) cpu_t = j["cpu_seconds"].get<double>();
+      const bool from_curve = runs_of(m, t) == 0 && t == state_of(m).curve_scene;
+      nlohmann::json j = from_curve ? state_of(m).curve_verification : summarise_test(s, t, runs, &cpu_t);
+      if (from_curve) cpu_t = j["cpu_seconds"].get<double>();
       cpu += cpu_t;
       if (!j["rel_error"].is_null()) {
         sum_abs += std::fabs(j["rel_error"].get<double>());
@@ -254,15 +255,29 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
   } else if (chosen < 0) {
     selection["note"] = "no model has an error on every test with an experimental value";
   }
-  nlohmann::json at = nlohmann::json::object();
-  for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
-  selection["verified_at"] = at;
-  selection["verified_at_note"] = "every model is verified at the values calibrated with the first model (\"" +
-                                  s.models.front().name + "\"); a model that needs other values shows it as a larger error";
-  if (st.curve_scene >= 0)
-    selection["verified_at_note"] = selection["verified_at_note"].get<std::string>() + "; \"" + s.scene_of(st.curve_scene).name +
-                                    "\" of \"" + s.models.front().name + "\" is read from its runs along the solution curve";
+  const auto point_of = [&](int m) {
+    nlohmann::json at = nlohmann::json::object();
+    for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = state_of(m).chosen(static_cast<Eigen::Index>(p));
+    return at;
+  };
   const int shown = chosen >= 0 ? chosen : 0;
+  const nlohmann::json at = point_of(shown);
+  selection["verified_at"] = at;
+  std::string note;
+  if (each_model) {
+    nlohmann::json per = nlohmann::json::object();
+    for (int m = 0; m < models; ++m) per[s.models[static_cast<std::size_t>(m)].name] = point_of(m);
+    selection["verified_at_per_model"] = per;
+    note = "each model is verified at its own calibrated values ([verify] calibrate_each_model)";
+  } else {
+    note = "every model is verified at the values calibrated with the first model (\"" + s.models.front().name +
+           "\"); a model that needs other values shows it as a larger error";
+  }
+  for (int m = 0; m < models; ++m)
+    if (state_of(m).curve_scene >= 0 && (each_model || m == 0))
+      note += "; \"" + s.scene_of(state_of(m).curve_scene).name + "\" of \"" + s.models[static_cast<std::size_t>(m)].name +
+              "\" is read from its runs along the solution curve";
+  selection["verified_at_note"] = note;
   st.verification = {{"model", s.models[static_cast<std::size_t>(shown)].name}, {"replicates", s.verify.replicates}, {"point", at},
                      {"tests", rows[static_cast<std::size_t>(shown)]["tests"]}};
   st.selection = selection;
@@ -273,7 +288,8 @@ nlohmann::json select_models(const StudyConfig& s, PipelineState& st, StudyStore
 }  // namespace
 
 nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir,
-                                 const std::function<void(int models_done)>& on_model_done) {
+                                 const std::function<void(int models_done)>& on_model_done,
+                                 const std::vector<const PipelineState*>& calibrated) {
   const StudyConfig& s = ev.study();
   const int models = static_cast<int>(s.models.size());
   const int scenes = s.scene_count();
@@ -281,8 +297,16 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
     const int r = s.scene_of(t).replicates;
     return t >= static_cast<int>(s.targets.size()) && r > 0 ? r : s.verify.replicates;
   };
-  // The test run along the solution curve has its first model's runs already (curve_stage.cpp).
-  const std::function<int(int, int)> runs_of = [&](int m, int t) { return m == 0 && t == st.curve_scene ? 0 : reps_of(t); };
+  // With calibrate_each_model each model has its own calibration (its point and curve), else
+  // every model is verified at the first model's.
+  const bool each_model = !calibrated.empty();
+  const std::function<const PipelineState&(int)> state_of = [&](int m) -> const PipelineState& {
+    return each_model && m > 0 ? *calibrated.at(static_cast<std::size_t>(m)) : st;
+  };
+  // The test run along a model's solution curve has that model's runs already (curve_stage.cpp).
+  const std::function<int(int, int)> runs_of = [&](int m, int t) {
+    return (m == 0 || each_model) && t == state_of(m).curve_scene ? 0 : reps_of(t);
+  };
   int planned = 0;
   for (int m = 0; m < models; ++m)
     for (int t = 0; t < scenes; ++t) planned += runs_of(m, t);
@@ -301,7 +325,7 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
         const std::string dir = rep == 0 ? out_dir + "/scenes/" + path_slug(s.models[static_cast<std::size_t>(m)].name) + "/" +
                                                path_slug(s.scene_of(t).name)
                                          : std::string();
-        requests.push_back(ev.plan_one("verify", st.chosen, t, m, dir));
+        requests.push_back(ev.plan_one("verify", state_of(m).chosen, t, m, dir));
         model_of.push_back(m);
       }
     }
@@ -341,11 +365,11 @@ nlohmann::json run_verification(StudyEvaluator& ev, PipelineState& st, StudyStor
     const int before = complete;
     while (complete < models && missing[static_cast<std::size_t>(complete)] == 0) ++complete;
     if (complete > before && complete < models) {
-      select_models(s, st, store, arrived, first, complete, reps_of, runs_of);
+      select_models(s, st, store, arrived, first, complete, reps_of, runs_of, state_of, each_model);
       if (on_model_done) on_model_done(complete);
     }
   }, unneeded);
-  return select_models(s, st, store, records, first, models, reps_of, runs_of);
+  return select_models(s, st, store, records, first, models, reps_of, runs_of, state_of, each_model);
 }
 
 }  // namespace seedcal

@@ -468,6 +468,60 @@ TEST(CalibrateCli, VerifiesAndSelectsModels) {
   std::filesystem::remove_all(dir);
 }
 
+// [verify] calibrate_each_model: a model with a stiffer contact (Poisson's ratio 0.4 instead of
+// 0.2) meets the Hertz contact time at its own modulus. The contact time depends on E / (1 - nu^2)
+// only (Johnson, Contact Mechanics, sec. 11.4), so its calibrated E is 0.84 / 0.96 of the first
+// model's, and each model verifies on the target at its own point.
+TEST(CalibrateCli, EachModelIsCalibratedBeforeItsVerification) {
+  const std::string dir = scratch_dir("calibrate-each-model");
+  const double e0 = 3.3e10;
+  const auto m = impact_metrics(e0, 2800.0, dir + "/truth");
+  const std::string text = "name = \"impact-each-model\"\nseed = 7\n" + target("contact_duration_s", m["contact_duration_s"].get<double>()) +
+                           parameter("materials.glass.youngs_modulus_pa", 2e10, 6e10, "calibrate = true\n") + R"(
+[screen]
+runs = 8
+
+[confirm]
+replicates = 2
+tolerance = 0.005
+max_evaluations = 60
+
+[verify]
+replicates = 1
+calibrate_each_model = true
+
+[[model]]
+name = "nu-0.2"
+
+[[model]]
+name = "nu-0.4"
+set = ["materials.glass.poisson_ratio=0.4"]
+)";
+  const auto r = calibrate_study(dir, text);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto s = nlohmann::json::parse(read_text(dir + "/out/summary.json"));
+  ASSERT_TRUE(s.contains("calibration_per_model")) << s.dump(1);
+  const auto& per = s["calibration_per_model"];
+  ASSERT_EQ(per.size(), 2u);
+  const char* e_path = "materials.glass.youngs_modulus_pa";
+  const double e_first = per[0]["calibrated"][e_path].get<double>(), e_second = per[1]["calibrated"][e_path].get<double>();
+  EXPECT_EQ(e_first, s["calibrated"][e_path].get<double>());
+  // Each within the 0.5 % tolerance on the contact time, i.e. 1.25 % on E (t ~ E^(-2/5)).
+  EXPECT_NEAR(e_first / e0, 1.0, 0.0125) << per.dump(1);
+  EXPECT_NEAR(e_second / e_first, 0.84 / 0.96, 0.025) << per.dump(1);
+  for (const auto& p : per) EXPECT_TRUE(p["converged"].get<bool>()) << p.dump(1);
+  // Verified at its own point, each model meets the target (the fresh runs of a noise-free scene).
+  const auto& sel = s["model_selection"];
+  EXPECT_EQ(sel["verified_at_per_model"]["nu-0.4"][e_path].get<double>(), e_second) << sel.dump(1);
+  for (const auto& row : sel["models"])
+    EXPECT_LE(std::fabs(row["tests"][0]["rel_error"].get<double>()), 0.005) << row.dump(1);
+  const std::string log = read_text(dir + "/out/calibrate.log");
+  EXPECT_NE(log.find("confirm [nu-0.4]: converged"), std::string::npos) << log;
+  // The estimate priced the second model's calibration.
+  EXPECT_NE(log.find("plan: calibration of \"nu-0.4\""), std::string::npos) << log;
+  std::filesystem::remove_all(dir);
+}
+
 // --dry-run prints the plan (a line per test and model, a line per stage, the total) and runs
 // nothing: no study directory, no store, exit 0.
 TEST(CalibrateCli, DryRunPrintsThePlanAndRunsNothing) {
