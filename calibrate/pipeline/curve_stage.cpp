@@ -1,24 +1,27 @@
 // The point on the solution curve (docs/calibrate.md, "The point on the curve").
 //
-// One target and two kept parameters leave a curve of solutions: the direct-shear strength is met
-// by a high sliding friction with a low rolling friction as well as the reverse. A second test that
-// answers differently along that curve (the heap's angle answers rolling friction) can pick the
-// point, as the paper's check against the piling test does by eye. Here:
-//   1. the curve u(s), s in [0, 1] its normalised arc length in the box-coded surrogate box, is the
-//      level set of the target's refitted surrogate through the confirmed point (posterior stage),
-//      or, where that surrogate's mean misses the target everywhere in the box (a response flat
-//      within its scatter), the curve of the last solve round, which chose the confirmed point;
-//   2. the test (the study's `curve_test`, else the verification test with an experimental value
-//      whose runs at the curve's two ends differ most, in laboratory sd when the tests give one)
-//      runs once at each of `curve_points` evenly spaced values of s, under the first model;
-//   3. a straight line y = a + b s is fitted to its results (doe/rsm/level_curve.hpp), and the
-//      point is s* with a + b s* = the experiment (inverse prediction, Draper & Smith sec. 3.2),
-//      clamped to the curve and flagged at an end; when the slope is not told from zero by a t
-//      test at 95 % the confirmed point is kept and the report says so;
-//   4. the line, as a function of the box through the projection onto the curve, joins the target
-//      in the posterior (posterior_stage.cpp), which gives the point its interval.
-// The runs count as the test's verification under the first model: its mean is the line at s*,
-// its scatter the line's residual sd (verify_stage.cpp).
+// One target and two kept parameters leave a set of solutions: the direct-shear strength is met by
+// a high sliding friction with a low rolling friction as well as the reverse. A second test that
+// answers differently across that set (the heap's angle answers rolling friction) can pick the
+// point, as the paper's check against the piling test does by eye. Two cases:
+//   - "curve": the target's surrogate refitted by the posterior meets the experiment along a curve
+//     u(s) in the box-coded surrogate box (s in [0, 1] its normalised arc length, the branch
+//     through the confirmed point). The test runs once at each of `curve_points` evenly spaced s;
+//     its response model is a straight line y = b0 + b1 s, read at a point's projection onto the
+//     curve;
+//   - "region": that surrogate's mean misses the experiment everywhere in the box (the target's
+//     response is flat within its scatter, so every point of the box is as good a solution). The
+//     test runs at the box's four corners (and its centre for more points); its response model is
+//     a plane y = b0 + b1 u1 + b2 u2.
+// The model is fitted by least squares (doe/regression/least_squares.hpp). It answers when its
+// slope terms differ from zero (t test on the line's slope, F test on the plane's, 5 %); then the
+// point is where the model meets the test's experiment: s* on the line (inverse prediction, Draper
+// & Smith, Applied Regression Analysis, sec. 3.2), or on the plane the nearest point to the
+// confirmed one, u0 + (y_exp - y(u0)) g / |g|^2 with g the plane's gradient; clamped to the curve
+// or the box with `at_end` said. Otherwise the confirmed point is kept. The model, with the variance
+// of its fitted mean, joins the target in the posterior (posterior_stage.cpp), which gives the
+// point its interval. The runs count as the test's verification under this model: its mean is the
+// model at the point, its sd the residual sd (verify_stage.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -27,6 +30,7 @@
 #include <gsl/gsl_cdf.h>
 
 #include "calibrate/pipeline/pipeline.hpp"
+#include "doe/regression/least_squares.hpp"
 
 namespace seedcal {
 namespace {
@@ -42,6 +46,16 @@ nlohmann::json natural_of(const StudyConfig& s, const PipelineState& st, const E
   nlohmann::json p = nlohmann::json::object();
   for (const int j : st.kept) p[s.parameters[static_cast<std::size_t>(j)].path] = natural(j);
   return p;
+}
+
+// The region design: the four corners of the box, the (1, 1) corner last (the pilot compares the
+// two ends of the diagonal), centre points between for more than four points.
+Eigen::Vector2d region_point(int i, int n) {
+  if (i == 0) return {-1.0, -1.0};
+  if (i == n - 1) return {1.0, 1.0};
+  if (i == 1) return {1.0, -1.0};
+  if (i == 2) return {-1.0, 1.0};
+  return {0.0, 0.0};
 }
 
 }  // namespace
@@ -60,6 +74,19 @@ std::vector<int> curve_candidates(const StudyConfig& s) {
     if (t.sd > 0.0) with_sd.push_back(T + c);
   }
   return with_sd.empty() ? out : with_sd;
+}
+
+Eigen::VectorXd curve_features(const PipelineState& st, const Eigen::VectorXd& u) {
+  if (st.curve_mode == "curve") return Eigen::Vector2d(1.0, st.curve_path.project(u.head<2>()));
+  return Eigen::Vector3d(1.0, u(0), u(1));
+}
+
+doe::GpPrediction curve_prediction(const PipelineState& st, const Eigen::VectorXd& u) {
+  const Eigen::VectorXd f = curve_features(st, u);
+  doe::GpPrediction p;
+  p.mean = f.dot(st.curve_beta);
+  p.variance = f.dot(st.curve_cov * f);
+  return p;
 }
 
 nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir) {
@@ -83,29 +110,40 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   if (all_identified) return skip("the target alone identifies both kept parameters");
   const std::vector<int> candidates = curve_candidates(s);
   if (candidates.empty()) return skip("no verification test has an experimental value to pick a point by");
-  if (!st.curve_path.usable())
-    return skip("the target's surrogate does not meet the experiment along a curve in the surrogate box: there is no curve to pick along");
 
   const int n = s.verify.curve_points;
-  const auto natural_at = [&](double sv) { return full_point(st, box_point(st, st.curve_path.at(sv))); };
+  st.curve_mode = st.curve_path.usable() ? "curve" : "region";
+  const bool on_curve = st.curve_mode == "curve";
+  if (!on_curve && n < 4)
+    return skip("the target's surrogate is flat within its scatter over the box, and a plane over the box needs at least 4 "
+                "points ([verify] curve_points = " + std::to_string(n) + ")");
+  report["mode"] = st.curve_mode;
+  report["mode_reason"] = on_curve ? "the target's surrogate (refitted with its noise fixed) meets the experiment along a curve in the box"
+                                   : "the target's surrogate (refitted with its noise fixed) misses the experiment everywhere in the box: "
+                                     "its response is flat within the scatter, every point of the box is as good a solution, and the "
+                                     "test runs at the box's corners";
+  // Box-coded position of design point i.
+  const auto coded_at = [&](int i) -> Eigen::VectorXd {
+    if (on_curve) return st.curve_path.at(static_cast<double>(i) / (n - 1));
+    return region_point(i, n);
+  };
+  const auto natural_at = [&](int i) { return full_point(st, box_point(st, coded_at(i))); };
   const auto dir_of = [&](int scene, int i) {
     return out_dir + "/curve/" + path_slug(s.models[static_cast<std::size_t>(st.model)].name) + "/" + path_slug(s.scene_of(scene).name) +
            "/point_" + std::to_string(i + 1);
   };
-  std::vector<double> svals(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) svals[static_cast<std::size_t>(i)] = static_cast<double>(i) / (n - 1);
 
-  // Records of the chosen test at each point (index into svals), and every run made.
+  // Records of the chosen test at each design point.
   std::vector<EvaluationRecord> at(static_cast<std::size_t>(n));
   std::vector<char> have(static_cast<std::size_t>(n), 0);
-  nlohmann::json pilot = nlohmann::json::array();
   int scene = candidates.front();
   if (candidates.size() > 1) {
-    // The curve's two ends for every candidate; the one whose ends differ most is run along it.
+    // The design's two ends for every candidate; the one whose ends differ most runs the rest.
+    nlohmann::json pilot = nlohmann::json::array();
     std::vector<EvalRequest> requests;
     for (const int c : candidates) {
-      requests.push_back(ev.plan_one("curve", natural_at(0.0), c, st.model, dir_of(c, 0)));
-      requests.push_back(ev.plan_one("curve", natural_at(1.0), c, st.model, dir_of(c, n - 1)));
+      requests.push_back(ev.plan_one("curve", natural_at(0), c, st.model, dir_of(c, 0)));
+      requests.push_back(ev.plan_one("curve", natural_at(n - 1), c, st.model, dir_of(c, n - 1)));
     }
     ev.announce("curve (the ends, every test)", static_cast<int>(requests.size()));
     const auto records = ev.run(requests);
@@ -127,7 +165,7 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
     }
     have.front() = have.back() = 1;
     report["pilot"] = pilot;
-    report["choice_rule"] = "the test whose runs at the curve's two ends differ most (in laboratory sd where the tests give one)";
+    report["choice_rule"] = "the test whose runs at the design's two ends differ most (in laboratory sd where the tests give one)";
   } else {
     report["choice_rule"] = s.verify.curve_test.empty() ? "the only verification test with an experimental value"
                                                         : "named by the study ([verify] curve_test)";
@@ -138,7 +176,7 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
     std::vector<int> index;
     for (int i = 0; i < n; ++i) {
       if (have[static_cast<std::size_t>(i)]) continue;
-      requests.push_back(ev.plan_one("curve", natural_at(svals[static_cast<std::size_t>(i)]), scene, st.model, dir_of(scene, i)));
+      requests.push_back(ev.plan_one("curve", natural_at(i), scene, st.model, dir_of(scene, i)));
       index.push_back(i);
     }
     ev.announce("curve (" + test.name + ")", static_cast<int>(requests.size()));
@@ -146,19 +184,24 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
     for (std::size_t k = 0; k < records.size(); ++k) at[static_cast<std::size_t>(index[k])] = records[k];
   }
 
-  std::vector<double> xs, ys;
+  const int p = on_curve ? 2 : 3;  // model terms
+  std::vector<Eigen::VectorXd> rows;
+  std::vector<double> ys;
   nlohmann::json points = nlohmann::json::array(), failures = nlohmann::json::array(), samples = nlohmann::json::array(),
                  seeds = nlohmann::json::array();
   double cpu = 0.0;
   for (int i = 0; i < n; ++i) {
     const EvaluationRecord& r = at[static_cast<std::size_t>(i)];
-    const double sv = svals[static_cast<std::size_t>(i)], y = record_metric(s, r);
+    const double y = record_metric(s, r);
     cpu += r.cpu_seconds;
-    nlohmann::json p = {{"s", sv}, {"at", natural_of(s, st, natural_at(sv))}, {"seed", r.seed}, {"status", r.status}};
-    p["value"] = std::isfinite(y) ? nlohmann::json(y) : nlohmann::json(nullptr);
-    points.push_back(p);
+    nlohmann::json pt = {{"at", natural_of(s, st, natural_at(i))}, {"seed", r.seed}, {"status", r.status}};
+    if (on_curve) pt["s"] = static_cast<double>(i) / (n - 1);
+    pt["value"] = std::isfinite(y) ? nlohmann::json(y) : nlohmann::json(nullptr);
+    points.push_back(pt);
     if (std::isfinite(y)) {
-      xs.push_back(sv);
+      const Eigen::VectorXd u = coded_at(i);
+      rows.push_back(on_curve ? Eigen::VectorXd(Eigen::Vector2d(1.0, static_cast<double>(i) / (n - 1)))
+                              : Eigen::VectorXd(Eigen::Vector3d(1.0, u(0), u(1))));
       ys.push_back(y);
       samples.push_back(y);
       seeds.push_back(r.seed);
@@ -171,53 +214,90 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   report["experimental_mean"] = test.value;
   report["experimental_sd"] = test.sd > 0.0 ? nlohmann::json(test.sd) : nlohmann::json(nullptr);
   report["model"] = s.models[static_cast<std::size_t>(st.model)].name;
-  report["curve_source"] = st.curve_source;
   report["points"] = points;
   if (!failures.empty()) report["failures"] = failures;
-  if (xs.size() < 3) return skip("fewer than 3 of the " + std::to_string(n) + " runs along the curve gave a result: no line");
+  if (static_cast<int>(ys.size()) < p + 1)
+    return skip("only " + std::to_string(ys.size()) + " of the " + std::to_string(n) + " runs gave a result: too few for a " +
+                (on_curve ? "line" : "plane") + " and its scatter");
 
-  const doe::StraightLine line = doe::fit_straight_line(xs, ys);
-  const double se_b = line.df > 0 && line.sxx > 0.0 ? std::sqrt(line.sigma2 / line.sxx) : 0.0;
-  const double t_crit = line.df > 0 ? gsl_cdf_tdist_Qinv(0.025, line.df) : std::numeric_limits<double>::infinity();
-  // A noise-free test (residuals at rounding) answers with any slope that is not zero.
-  const bool answers = se_b > 0.0 ? std::fabs(line.b) > t_crit * se_b : line.b != 0.0;
-  const double s_raw = line.inverse(test.value);
-  const double s_star = std::isfinite(s_raw) ? std::clamp(s_raw, 0.0, 1.0) : 0.5;
-  report["line"] = {{"intercept", line.a}, {"slope", line.b}, {"slope_se", se_b}, {"residual_sd", std::sqrt(line.sigma2)},
-                    {"df", line.df}, {"r2", line.r2}, {"slope_t_critical_95", std::isfinite(t_crit) ? nlohmann::json(t_crit) : nlohmann::json(nullptr)}};
-  report["answers_along_curve"] = answers;
-  if (!answers) {
-    report["note"] = "the test's response does not change along the curve beyond its scatter (|slope| " +
-                     curve_number(std::fabs(line.b)) + " <= " + curve_number(t_crit) + " x its se " + curve_number(se_b) +
-                     "): the confirmed point is kept";
+  Eigen::MatrixXd X(static_cast<Eigen::Index>(ys.size()), p);
+  for (std::size_t i = 0; i < rows.size(); ++i) X.row(static_cast<Eigen::Index>(i)) = rows[i].transpose();
+  const Eigen::VectorXd y = Eigen::Map<const Eigen::VectorXd>(ys.data(), static_cast<Eigen::Index>(ys.size()));
+  const doe::LeastSquaresFit fit = doe::fit_least_squares(
+      X, y, on_curve ? std::vector<std::string>{"intercept", "s"} : std::vector<std::string>{"intercept", "u1", "u2"});
+  const int df = fit.df_residual;
+  const double sigma2 = std::isfinite(fit.mse) ? fit.mse : 0.0;
+  // The slope terms against zero, at 5 %: the line's t test, the plane's F test.
+  double p_slope = 1.0;
+  if (on_curve) {
+    p_slope = fit.standard_errors(1) > 0.0 ? doe::t_test_p(fit.t(1), df) : (fit.coefficients(1) != 0.0 ? 0.0 : 1.0);
   } else {
+    const Eigen::Vector2d g = fit.coefficients.tail<2>();
+    const Eigen::Matrix2d cov = sigma2 * fit.unscaled_covariance.bottomRightCorner<2, 2>();
+    const double f = cov.determinant() > 0.0 ? g.dot(cov.ldlt().solve(g)) / 2.0 : std::numeric_limits<double>::infinity();
+    p_slope = std::isfinite(f) ? doe::f_test_p(f, 2, df) : (g.norm() > 0.0 ? 0.0 : 1.0);
+  }
+  const bool answers = std::isfinite(p_slope) && p_slope < 0.05;
+  // The variance of the fitted mean, made as wide as the Student-t interval it stands for: the
+  // posterior is Gaussian, and a residual variance on few degrees of freedom is itself uncertain
+  // (factor (t_0.975,df / z_0.975)^2: 4.8 at 2 df, 1.5 at 6 df).
+  const double inflation = df > 0 ? std::pow(gsl_cdf_tdist_Qinv(0.025, df) / gsl_cdf_ugaussian_Qinv(0.025), 2) : 1.0;
+  st.curve_beta = fit.coefficients;
+  st.curve_cov = inflation * sigma2 * fit.unscaled_covariance;
+  st.curve_df = df;
+  nlohmann::json coef = nlohmann::json::object(), se = nlohmann::json::object();
+  for (int j = 0; j < p; ++j) {
+    coef[fit.names[static_cast<std::size_t>(j)]] = fit.coefficients(j);
+    se[fit.names[static_cast<std::size_t>(j)]] = fit.standard_errors(j);
+  }
+  const double r2 = 1.0 - fit.sse / std::max(1e-300, (y.array() - y.mean()).square().sum());
+  report["response_model"] = {{"terms", on_curve ? "y = intercept + s * s_arc" : "y = intercept + u1 * u1 + u2 * u2 (box-coded)"},
+                              {"coefficients", coef}, {"standard_errors", se}, {"residual_sd", std::sqrt(sigma2)}, {"df", df},
+                              {"r2", r2}, {"p_slope", p_slope}, {"posterior_variance_factor", inflation}};
+  report["answers"] = answers;
+
+  Eigen::Vector2d u0;
+  for (int q = 0; q < 2; ++q)
+    u0(q) = std::clamp((st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) /
+                           (0.5 * (st.box_hi(q) - st.box_lo(q))),
+                       -1.0, 1.0);
+  Eigen::Vector2d u_pick = u0;
+  if (!answers) {
+    report["note"] = "the test's response does not change across the " + std::string(on_curve ? "curve" : "box") +
+                     " beyond its scatter (p = " + curve_number(p_slope) + " for its slope): the confirmed point is kept";
+  } else if (on_curve) {
+    const double s_raw = (test.value - fit.coefficients(0)) / fit.coefficients(1);
+    const double s_star = std::clamp(s_raw, 0.0, 1.0);
     if (s_raw < 0.0 || s_raw > 1.0)
       report["at_end"] = "the line meets the experiment beyond the curve's " + std::string(s_raw < 0.0 ? "start" : "end") +
                          " (s = " + curve_number(s_raw) + "): the end is picked";
-    st.chosen = natural_at(s_star);
+    report["s_picked"] = s_star;
+    report["s_line_meets_experiment"] = s_raw;
+    u_pick = st.curve_path.at(s_star);
+  } else {
+    const Eigen::Vector2d g = fit.coefficients.tail<2>();
+    const Eigen::Vector2d raw = u0 + (test.value - curve_prediction(st, u0).mean) / g.squaredNorm() * g;
+    u_pick = raw.cwiseMax(-1.0).cwiseMin(1.0);
+    if ((u_pick - raw).norm() > 1e-12)
+      report["at_end"] = "the plane meets the experiment outside the box (coded " + curve_number(raw(0)) + ", " +
+                         curve_number(raw(1)) + "): the nearest point of the box is picked";
   }
-  report["s_picked"] = answers ? nlohmann::json(s_star) : nlohmann::json(nullptr);
-  report["s_line_meets_experiment"] = std::isfinite(s_raw) ? nlohmann::json(s_raw) : nlohmann::json(nullptr);
+  if (answers) st.chosen = full_point(st, box_point(st, u_pick));
   report["picked"] = natural_of(s, st, st.chosen);
   st.curve_scene = scene;
-  st.curve_line = line;
 
-  // The test's verification under the first model, from these runs: the line at the point.
-  Eigen::Vector2d chosen_u;
-  for (int q = 0; q < 2; ++q)
-    chosen_u(q) = (st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) /
-                  (0.5 * (st.box_hi(q) - st.box_lo(q)));
-  const double s_at = answers ? s_star : st.curve_path.project(chosen_u);
-  const doe::GpPrediction at_point = line.predict(s_at);
-  const double residual_sd = std::sqrt(line.sigma2);
+  // The test's verification under this model, from these runs: the model at the point.
+  const doe::GpPrediction here = curve_prediction(st, u_pick);
+  const double mean_se = std::sqrt(std::max(0.0, sigma2 * curve_features(st, u_pick).dot(fit.unscaled_covariance * curve_features(st, u_pick))));
   nlohmann::json v = {{"test", test.name}, {"label", test.name}, {"metric", test.metric}, {"role", "verification"},
-                      {"n", xs.size()}, {"samples", samples}, {"seeds", seeds}, {"cpu_seconds", cpu / n},
-                      {"mean", at_point.mean}, {"sd", residual_sd}, {"sd_df", line.df}, {"mean_se", at_point.sd()},
+                      {"n", ys.size()}, {"samples", samples}, {"seeds", seeds}, {"cpu_seconds", cpu / n},
+                      {"mean", here.mean}, {"sd", std::sqrt(sigma2)}, {"sd_df", df}, {"mean_se", mean_se},
                       {"experimental_mean", test.value},
                       {"experimental_sd", test.sd > 0.0 ? nlohmann::json(test.sd) : nlohmann::json(nullptr)},
-                      {"rel_error", at_point.mean / test.value - 1.0},
-                      {"within_sd", test.sd > 0.0 ? nlohmann::json(std::fabs(at_point.mean - test.value) <= test.sd) : nlohmann::json(nullptr)},
-                      {"source", "the " + std::to_string(xs.size()) + " runs along the solution curve: the line fitted to them at the point, its sd the line's residual sd"}};
+                      {"rel_error", here.mean / test.value - 1.0},
+                      {"within_sd", test.sd > 0.0 ? nlohmann::json(std::fabs(here.mean - test.value) <= test.sd) : nlohmann::json(nullptr)},
+                      {"source", "the " + std::to_string(ys.size()) + " runs " + (on_curve ? "along the solution curve" : "at the box's corners") +
+                                     ": the " + (on_curve ? "line" : "plane") + " fitted to them at the point, its sd the residual sd"}};
   if (!failures.empty()) v["failures"] = failures;
   st.curve_verification = v;
   report["verification"] = v;

@@ -13,6 +13,7 @@
 
 #include "calibrate/pipeline/study_evaluator.hpp"
 #include "doe/rsm/level_curve.hpp"
+#include "doe/surrogate/gaussian_process.hpp"
 
 namespace seedcal {
 
@@ -38,11 +39,14 @@ struct PipelineState {
   nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
   nlohmann::json posterior;         // after confirmation: intervals and identification (posterior_stage.cpp)
   // The pick along the solution curve (curve_stage.cpp). The curve: one target's level set through
-  // the confirmed point, box-coded, traced by the posterior stage on its refitted surrogate.
+  // the confirmed point, box-coded, traced by the posterior stage on its refitted surrogate (not
+  // usable when that surrogate misses the target everywhere in the box).
   doe::CurvePath curve_path;
-  std::string curve_source;         // which surrogate the curve was traced on
-  int curve_scene = -1;             // the verification test run along it (StudyConfig::scene_of); -1: none
-  doe::StraightLine curve_line;     // that test's response against the normalised arc length
+  std::string curve_mode;           // "curve" (a line along it) or "region" (a plane over the box)
+  int curve_scene = -1;             // the verification test run there (StudyConfig::scene_of); -1: none
+  Eigen::VectorXd curve_beta;       // that test's response model (curve_features) ...
+  Eigen::MatrixXd curve_cov;        // ... and the covariance of its coefficients, as the posterior counts it
+  int curve_df = 0;                 // the residual degrees of freedom
   nlohmann::json curve;             // the stage's report
   nlohmann::json curve_verification;  // that test's verification under the first model, from the curve's runs
   bool converged = false;
@@ -97,6 +101,10 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
 // else those with an experimental value, and of them the ones with a laboratory sd when any has
 // one (their answers along the curve are then compared in sd).
 std::vector<int> curve_candidates(const StudyConfig& s);
+// The terms of the curve test's response model at box-coded u: (1, s) with s the arc length of
+// u's projection onto the curve, or (1, u1, u2); and the model's mean and the variance of that mean.
+Eigen::VectorXd curve_features(const PipelineState& st, const Eigen::VectorXd& u);
+doe::GpPrediction curve_prediction(const PipelineState& st, const Eigen::VectorXd& u);
 // Stages 6 and 7: every verification test (and the targets) under every model at st.chosen, then
 // the model choice by accuracy per CPU second (verify_stage.cpp); pictures under out_dir/scenes/.
 // All runs form one batch in model order; whenever the first k < models models have every run,

@@ -115,50 +115,40 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
       lo.anchor(q) = std::clamp((st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q), -1.0, 1.0);
     const auto gp = gps.front();
     st.curve_path = doe::trace_level_curve([gp](const Eigen::VectorXd& u) { return gp->predict(u).mean; }, s.targets[0].value, lo);
-    st.curve_source = "the posterior's surrogate (noise fixed at the run-to-run variance)";
-    if (!st.curve_path.usable() && st.solution.contains("curve") && st.solution["curve"].size() >= 2) {
-      // Its mean misses the target everywhere in the box (the runs there scatter about a level
-      // within the noise of the target): the curve the last solve round traced, on the surrogate
-      // that chose the confirmed point, is the one the calibration has.
-      std::vector<Eigen::Vector2d> pts;
-      for (const auto& c : st.solution["curve"]) {
-        Eigen::Vector2d u;
-        for (int q = 0; q < 2; ++q)
-          u(q) = (c[s.parameters[static_cast<std::size_t>(st.kept[static_cast<std::size_t>(q)])].path].get<double>() -
-                  0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q);
-        pts.push_back(u);
-      }
-      st.curve_path = doe::CurvePath(std::move(pts));
-      st.curve_source = "the last solve round's surrogate: the posterior's mean does not meet the target in the box (over the box it moves less than the runs scatter)";
-    }
   }
-  // The test run along that curve (curve_stage.cpp), once it has run: its line in the arc length,
-  // read at the projection of each point of the box onto the curve, is one more piece of evidence.
+  // The test run along that curve or over the box (curve_stage.cpp), once it has run: its response
+  // model (a line in the arc length, read at each point's projection onto the curve, or a plane)
+  // is one more piece of evidence.
   nlohmann::json curve_entry;
-  if (st.curve_scene >= 0 && st.curve_path.usable()) {
+  if (st.curve_scene >= 0) {
     const StudyTarget& test = s.scene_of(st.curve_scene);
-    const doe::CurvePath path = st.curve_path;
-    const doe::StraightLine line = st.curve_line;
-    // A noise-free test fits its line exactly: the mean's variance is floored at rounding.
+    const PipelineState* sp = &st;
+    // A noise-free test fits its model exactly: the mean's variance is floored at rounding.
     const double floor_var = std::pow(1e-9 * std::fabs(test.value), 2);
     doe::TargetEvidence e;
-    e.response = [path, line, floor_var](const Eigen::VectorXd& u) {
-      doe::GpPrediction g = line.predict(path.project(u.head<2>()));
+    e.response = [sp, floor_var](const Eigen::VectorXd& u) {
+      doe::GpPrediction g = curve_prediction(*sp, u);
       g.variance = std::max(g.variance, floor_var);
       return g;
     };
     e.value = test.value;
     e.value_variance = test.sd > 0.0 ? test.sd * test.sd / test.lab_repeats : 0.0;
     evidence.push_back(e);
-    curve_entry = {{"name", test.name}, {"role", "verification test along the solution curve"}, {"runs", line.n},
-                   {"run_noise_sd", std::sqrt(line.sigma2)}, {"run_noise_df", line.df},
-                   {"run_noise_source", "the residuals of the straight line along the curve"}, {"value", test.value},
-                   {"response", "a straight line in the arc length along the curve, at each point's projection onto it"}};
+    const bool line = st.curve_mode == "curve";
+    curve_entry = {{"name", test.name},
+                   {"role", line ? "verification test along the solution curve" : "verification test at the box's corners"},
+                   {"runs", st.curve.value("verification", nlohmann::json::object()).value("n", 0)},
+                   {"run_noise_sd", st.curve.value("verification", nlohmann::json::object()).value("sd", 0.0)},
+                   {"run_noise_df", st.curve_df},
+                   {"run_noise_source", std::string("the residuals of the ") + (line ? "line along the curve" : "plane over the box")},
+                   {"value", test.value},
+                   {"response", line ? "a straight line in the arc length along the curve, at each point's projection onto it"
+                                     : "a plane in the two parameters"}};
     if (test.sd > 0.0) {
       curve_entry["lab_sd"] = test.sd;
-      curve_entry["uncertainty"] = "the laboratory's sd, and the line's";
+      curve_entry["uncertainty"] = "the laboratory's sd, and the fitted model's";
     } else {
-      curve_entry["uncertainty"] = "the line's only: the study gives no laboratory sd for this test";
+      curve_entry["uncertainty"] = "the fitted model's only: the study gives no laboratory sd for this test";
     }
   }
 

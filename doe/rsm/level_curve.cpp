@@ -136,44 +136,4 @@ CurvePath trace_level_curve(const Surface& f, double target, const LevelCurveOpt
   return CurvePath(std::move(ordered));
 }
 
-GpPrediction StraightLine::predict(double s) const {
-  GpPrediction p;
-  p.mean = a + b * s;
-  p.variance = sxx > 0.0 && n > 0 ? sigma2 * (1.0 / n + (s - s_mean) * (s - s_mean) / sxx) : 0.0;
-  return p;
-}
-
-double StraightLine::inverse(double y) const {
-  return b != 0.0 ? (y - a) / b : std::numeric_limits<double>::quiet_NaN();
-}
-
-StraightLine fit_straight_line(const std::vector<double>& s, const std::vector<double>& y) {
-  if (s.size() != y.size() || s.size() < 3)
-    throw DoeError("fit_straight_line: " + std::to_string(s.size()) + " abscissae and " + std::to_string(y.size()) +
-                   " values: needs at least 3 pairs");
-  StraightLine L;
-  L.n = static_cast<int>(s.size());
-  double ys = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    L.s_mean += s[i];
-    ys += y[i];
-  }
-  L.s_mean /= L.n;
-  const double y_mean = ys / L.n;
-  double sxy = 0.0, syy = 0.0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    L.sxx += (s[i] - L.s_mean) * (s[i] - L.s_mean);
-    sxy += (s[i] - L.s_mean) * (y[i] - y_mean);
-    syy += (y[i] - y_mean) * (y[i] - y_mean);
-  }
-  if (!(L.sxx > 0.0)) throw DoeError("fit_straight_line: every abscissa is the same: no slope can be fitted");
-  L.b = sxy / L.sxx;
-  L.a = y_mean - L.b * L.s_mean;
-  const double rss = std::max(0.0, syy - L.b * sxy);
-  L.df = L.n - 2;
-  L.sigma2 = rss / L.df;
-  L.r2 = syy > 0.0 ? 1.0 - rss / syy : 1.0;
-  return L;
-}
-
 }  // namespace seedcal::doe

@@ -1,25 +1,17 @@
 #pragma once
 // The solution curve of one target in two unknowns: the level set {u in [-1, 1]^2 : f(u) = c} of a
-// fitted surface, traced as a polyline; positions along it by arc length; and the straight line
-// a second, noisy response follows along that curve, inverted for the value it should take.
+// fitted surface, traced as a polyline, and positions along it by arc length.
 //
 // Tracing: f - c is scanned on lines of constant u1 and of constant u2 (so a steep stretch of the
 // curve is found as densely as a flat one) and every sign change is refined by bisection. The
 // roots fall into branches (neighbours at most `max_gap` apart); the branch holding the root nearest
 // `anchor` is kept and ordered along its principal axis (the eigenvector of the largest eigenvalue
 // of its points' covariance): the curve in order for a branch monotone along that axis.
-//
-// Inverse regression: y = a + b s + e, e ~ N(0, sigma^2) fitted by least squares to n points
-// (Draper & Smith, Applied Regression Analysis, 3rd ed., sec. 1.2-1.4): with s_bar the mean
-// of s and Sxx = sum (s - s_bar)^2, the fitted mean at s has variance sigma^2 (1/n + (s -
-// s_bar)^2 / Sxx), sigma^2 = RSS / (n - 2). The value s* with a + b s* = y0 (their sec. 3.2,
-// "inverse prediction") is clamped to the curve's [0, 1].
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "doe/rsm/surface_optimum.hpp"
-#include "doe/surrogate/gaussian_process.hpp"
 
 namespace seedcal::doe {
 
@@ -53,21 +45,5 @@ class CurvePath {
 // The curve f(u) = target over [-1, 1]^2 (see the file comment); not usable() when f does not
 // cross the target in the box.
 CurvePath trace_level_curve(const Surface& f, double target, const LevelCurveOptions& options = {});
-
-struct StraightLine {
-  double a = 0.0, b = 0.0;     // y = a + b s
-  double sigma2 = 0.0;         // residual variance, RSS / (n - 2)
-  int df = 0;                  // n - 2
-  int n = 0;
-  double s_mean = 0.0, sxx = 0.0;
-  double r2 = 0.0;
-  // The fitted mean at s and the variance of that mean.
-  GpPrediction predict(double s) const;
-  // s with a + b s = y, unclamped (NaN when b = 0).
-  double inverse(double y) const;
-};
-
-// Least squares through (s_i, y_i); throws DoeError with fewer than 3 points or all s equal.
-StraightLine fit_straight_line(const std::vector<double>& s, const std::vector<double>& y);
 
 }  // namespace seedcal::doe

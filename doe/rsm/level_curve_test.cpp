@@ -1,6 +1,5 @@
 // The traced solution curve against curves known in closed form (a sloped line, a vertical line,
-// two branches), positions along it by arc length, and the inverse straight-line fit against
-// Draper & Smith's formulas computed by hand.
+// two branches) and positions along it by arc length.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,23 +58,6 @@ TEST(LevelCurve, KeepsTheBranchNearestTheAnchor) {
 TEST(LevelCurve, NoCrossingGivesNoCurve) {
   const Surface f = [](const Eigen::VectorXd& u) { return 2.0 + u(0); };
   EXPECT_FALSE(trace_level_curve(f, 0.0).usable());
-}
-
-TEST(StraightLine, FitPredictionVarianceAndInverse) {
-  // y = 1 + 2 s with residuals +0.1, -0.2, +0.1 (sum zero, orthogonal to s): a = 1, b = 2 exactly,
-  // RSS = 0.06 on 1 df.
-  const std::vector<double> s{0.0, 0.5, 1.0}, y{1.1, 1.8, 3.1};
-  const StraightLine L = fit_straight_line(s, y);
-  EXPECT_NEAR(L.a, 1.0, 1e-12);
-  EXPECT_NEAR(L.b, 2.0, 1e-12);
-  EXPECT_EQ(L.df, 1);
-  EXPECT_NEAR(L.sigma2, 0.06, 1e-12);
-  // Var of the mean at s: sigma^2 (1/3 + (s - 0.5)^2 / 0.5).
-  EXPECT_NEAR(L.predict(0.5).variance, 0.02, 1e-12);
-  EXPECT_NEAR(L.predict(1.5).variance, 0.06 * (1.0 / 3.0 + 2.0), 1e-12);
-  EXPECT_NEAR(L.inverse(2.0), 0.5, 1e-12);
-  EXPECT_THROW(fit_straight_line({0.0, 1.0}, {0.0, 1.0}), DoeError);
-  EXPECT_THROW(fit_straight_line({1.0, 1.0, 1.0}, {0.0, 1.0, 2.0}), DoeError);
 }
 
 }  // namespace

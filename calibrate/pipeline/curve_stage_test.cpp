@@ -1,0 +1,138 @@
+// The pick along the solution curve (curve_stage.cpp) on responses known in closed form, run by an
+// executor that evaluates a formula instead of a DEM scene: on a curve (a line in the arc length)
+// and over a flat target's box (a plane), the picked point is where the test's model meets its
+// experiment; a test that does not answer keeps the confirmed point; its runs become the test's
+// verification.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <functional>
+
+#include "calibrate/pipeline/pipeline.hpp"
+#include "calibrate/pipeline/progress.hpp"
+#include "tests/support/cli.hpp"
+
+namespace seedcal {
+namespace {
+
+// Evaluates the verification test's metric "h" as a formula of the two parameters (a, b).
+class FormulaExecutor final : public Executor {
+ public:
+  FormulaExecutor(const StudyConfig& s, std::function<double(double, double)> h) : study_(s), h_(std::move(h)) {}
+  int slots() const override { return 1; }
+  std::string describe() const override { return "formula"; }
+  void run(const std::vector<EvalRequest>& requests, const RecordCallback& done, const DispatchCheck&) override {
+    for (std::size_t i = 0; i < requests.size(); ++i) {
+      EvaluationRecord r = request_record(study_, requests[i]);
+      r.status = "ok";
+      r.metrics["status"] = "ok";
+      r.metrics[study_.scene_of(requests[i].target).metric] =
+          h_(requests[i].inputs["a"].get<double>(), requests[i].inputs["b"].get<double>());
+      done(i, r);
+    }
+  }
+
+ private:
+  const StudyConfig& study_;
+  std::function<double(double, double)> h_;
+};
+
+class CurvePick : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::scratch_dir("curve-pick");
+    const std::string scene = testing::source_dir() + "/data/scenes/examples/impact.toml";
+    const std::string text = "name = \"curve\"\n[[target]]\nscene = \"" + scene + "\"\nmetric = \"y\"\nvalue = 1.0\n"
+                             "[[parameter]]\npath = \"a\"\nlow = 0.0\nhigh = 1.0\ncalibrate = true\n"
+                             "[[parameter]]\npath = \"b\"\nlow = 0.0\nhigh = 1.0\ncalibrate = true\n"
+                             "[verify]\ncurve_points = 4\n[[verify.test]]\nname = \"check\"\nscene = \"" + scene +
+                             "\"\nmetric = \"h\"\nvalue = 13.3\nsd = 0.5\n";
+    std::filesystem::create_directories(dir_);
+    testing::write_text(dir_ + "/study.toml", text);
+    study_ = read_study(dir_ + "/study.toml");
+    st_.kept = {0, 1};
+    st_.nominal = Eigen::Vector2d(0.5, 0.5);
+    st_.box_lo = Eigen::Vector2d(0.0, 0.0);
+    st_.box_hi = Eigen::Vector2d(1.0, 1.0);
+    st_.chosen = Eigen::Vector2d(0.5, 0.5);
+    st_.posterior = {{"identified", {{"a", false}, {"b", false}}}};
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  nlohmann::json pick(const std::function<double(double, double)>& h) {
+    StudyStore store = StudyStore::create(dir_ + "/study.h5", {"hash", study_.text, "test", "now"});
+    FormulaExecutor executor(study_, h);
+    Progress progress(dir_ + "/calibrate.log", false, 1);
+    StudyEvaluator ev(study_, store, executor, progress);
+    const nlohmann::json r = run_curve_pick(ev, st_, store, dir_);
+    std::filesystem::remove(dir_ + "/study.h5");
+    return r;
+  }
+  std::string dir_;
+  StudyConfig study_;
+  PipelineState st_;
+};
+
+// A noise-free plane fits exactly: the pick is exact to rounding.
+constexpr double kExact = 1e-9;
+
+TEST_F(CurvePick, AlongTheCurveTheLineMeetsTheExperiment) {
+  // The curve: the box's diagonal, a = b = 0.5 + 0.5 u; h = 10 + 4 a + b = 10 + 5 s along it, so
+  // h = 13.3 at s = 0.66, a = b = 0.66.
+  st_.curve_path = doe::CurvePath({Eigen::Vector2d(-1.0, -1.0), Eigen::Vector2d(1.0, 1.0)});
+  const auto r = pick([](double a, double b) { return 10.0 + 4.0 * a + b; });
+  ASSERT_FALSE(r.contains("skipped")) << r.dump(1);
+  EXPECT_EQ(r["mode"], "curve");
+  EXPECT_TRUE(r["answers"].get<bool>());
+  EXPECT_NEAR(r["s_picked"].get<double>(), 0.66, kExact);
+  EXPECT_NEAR(st_.chosen(0), 0.66, kExact);
+  EXPECT_NEAR(st_.chosen(1), 0.66, kExact);
+  EXPECT_EQ(r["points"].size(), 4u);
+  // The verification from these runs: the line at the point, i.e. the experiment.
+  EXPECT_NEAR(st_.curve_verification["mean"].get<double>(), 13.3, kExact);
+  EXPECT_EQ(st_.curve_verification["n"], 4);
+  EXPECT_EQ(st_.curve_scene, 1);
+}
+
+TEST_F(CurvePick, OverAFlatTargetsBoxThePlanePicksTheNearestPoint) {
+  // No curve: the plane over the box. In coded units h = 12.5 + 2 u1 + 0.5 u2; from the confirmed
+  // point u0 = 0 the nearest point with h = 13.3 is 0.8 / 4.25 (2, 0.5).
+  const auto r = pick([](double a, double b) { return 10.0 + 4.0 * a + b; });
+  ASSERT_FALSE(r.contains("skipped")) << r.dump(1);
+  EXPECT_EQ(r["mode"], "region");
+  EXPECT_TRUE(r["answers"].get<bool>());
+  EXPECT_NEAR(st_.chosen(0), 0.5 + 0.5 * 2.0 * 0.8 / 4.25, kExact);
+  EXPECT_NEAR(st_.chosen(1), 0.5 + 0.5 * 0.5 * 0.8 / 4.25, kExact);
+  EXPECT_NEAR(curve_prediction(st_, Eigen::Vector2d(2.0 * 0.8 / 4.25, 0.5 * 0.8 / 4.25)).mean, 13.3, kExact);
+  // The corners, (1, 1) last.
+  EXPECT_EQ(r["points"][3]["at"]["a"], 1.0);
+  EXPECT_EQ(r["points"][3]["at"]["b"], 1.0);
+  EXPECT_FALSE(r.contains("at_end"));
+}
+
+TEST_F(CurvePick, BeyondTheBoxTheNearestEdgeIsPickedAndSaid) {
+  // h = 13.3 needs a = 1.2 on b's midline: outside the box.
+  const auto r = pick([](double a, double) { return 10.0 + 2.75 * a; });
+  EXPECT_TRUE(r["answers"].get<bool>());
+  EXPECT_TRUE(r.contains("at_end")) << r.dump(1);
+  EXPECT_NEAR(st_.chosen(0), 1.0, kExact);
+}
+
+TEST_F(CurvePick, ATestThatDoesNotAnswerKeepsTheConfirmedPoint) {
+  // A response that alternates between the corners (an interaction only): the plane's slopes are
+  // zero within its residual.
+  const auto r = pick([](double a, double b) { return 13.0 + ((a > 0.5) == (b > 0.5) ? 0.4 : -0.4); });
+  EXPECT_FALSE(r["answers"].get<bool>()) << r.dump(1);
+  EXPECT_TRUE(r.contains("note"));
+  EXPECT_EQ(st_.chosen(0), 0.5);
+  EXPECT_EQ(st_.chosen(1), 0.5);
+}
+
+TEST_F(CurvePick, IdentifiedOrSwitchedOffSkips) {
+  st_.posterior = {{"identified", {{"a", true}, {"b", true}}}};
+  EXPECT_EQ(pick([](double, double) { return 0.0; })["skipped"], "the target alone identifies both kept parameters");
+}
+
+}  // namespace
+}  // namespace seedcal
