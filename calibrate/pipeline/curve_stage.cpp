@@ -13,12 +13,14 @@
 //     response is flat within its scatter, so every point of the box is as good a solution). The
 //     test runs at the box's four corners (and its centre for more points); its response model is
 //     a plane y = b0 + b1 u1 + b2 u2.
-// The model is fitted by least squares (doe/regression/least_squares.hpp). It answers when its
-// slope terms differ from zero (t test on the line's slope, F test on the plane's, 5 %); then the
-// point is where the model meets the test's experiment: s* on the line (inverse prediction, Draper
-// & Smith, Applied Regression Analysis, sec. 3.2), or on the plane the nearest point to the
-// confirmed one, u0 + (y_exp - y(u0)) g / |g|^2 with g the plane's gradient; clamped to the curve
-// or the box with `at_end` said. Otherwise the confirmed point is kept. The model, with the variance
+// The model is fitted by least squares (doe/regression/least_squares.hpp). The point is where it
+// meets the test's experiment: s* on the line (inverse prediction, Draper & Smith, Applied
+// Regression Analysis, sec. 3.2), or on the plane the nearest point to the confirmed one,
+// u0 + (y_exp - y(u0)) g / |g|^2 with g the plane's gradient; beyond the curve's ends or the box,
+// the point of the curve or box whose response is nearest the experiment, with `at_end` said.
+// Whether the slope terms differ from zero (t test on the line's slope, F test on the plane's, 5 %)
+// is reported: with few runs a real slope can miss it, so the point moves whenever the model has
+// a slope and the posterior, not the test, says how well it is pinned. The model, with the variance
 // of its fitted mean, joins the target in the posterior (posterior_stage.cpp), which gives the
 // point its interval. The runs count as the test's verification under this model: its mean is the
 // model at the point, its sd the residual sd (verify_stage.cpp).
@@ -262,9 +264,11 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
                            (0.5 * (st.box_hi(q) - st.box_lo(q))),
                        -1.0, 1.0);
   Eigen::Vector2d u_pick = u0;
-  if (!answers) {
-    report["note"] = "the test's response does not change across the " + std::string(on_curve ? "curve" : "box") +
-                     " beyond its scatter (p = " + curve_number(p_slope) + " for its slope): the confirmed point is kept";
+  const Eigen::VectorXd slope = fit.coefficients.tail(p - 1);
+  // A slope at rounding (a response that does not change) does not move the point.
+  const bool moves = slope.allFinite() && slope.norm() > 1e-9 * (std::fabs(fit.coefficients(0)) + std::fabs(test.value));
+  if (!moves) {
+    report["note"] = "the test's model is flat: the confirmed point is kept";
   } else if (on_curve) {
     const double s_raw = (test.value - fit.coefficients(0)) / fit.coefficients(1);
     const double s_star = std::clamp(s_raw, 0.0, 1.0);
@@ -275,14 +279,31 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
     report["s_line_meets_experiment"] = s_raw;
     u_pick = st.curve_path.at(s_star);
   } else {
-    const Eigen::Vector2d g = fit.coefficients.tail<2>();
+    const Eigen::Vector2d g = slope;
     const Eigen::Vector2d raw = u0 + (test.value - curve_prediction(st, u0).mean) / g.squaredNorm() * g;
-    u_pick = raw.cwiseMax(-1.0).cwiseMin(1.0);
-    if ((u_pick - raw).norm() > 1e-12)
+    u_pick = raw;
+    if (raw.cwiseAbs().maxCoeff() > 1.0) {
+      // Outside the box: the point of the box whose plane value is nearest the experiment (the
+      // nearest to the confirmed point among equals), on a 201 x 201 grid.
+      double best = std::numeric_limits<double>::infinity(), best_d = best;
+      for (int i = 0; i <= 200; ++i)
+        for (int j = 0; j <= 200; ++j) {
+          const Eigen::Vector2d u(-1.0 + 0.01 * i, -1.0 + 0.01 * j);
+          const double miss = std::fabs(curve_prediction(st, u).mean - test.value), d = (u - u0).norm();
+          if (miss < best - 1e-12 * std::fabs(test.value) || (miss <= best + 1e-12 * std::fabs(test.value) && d < best_d)) {
+            best = miss;
+            best_d = d;
+            u_pick = u;
+          }
+        }
       report["at_end"] = "the plane meets the experiment outside the box (coded " + curve_number(raw(0)) + ", " +
-                         curve_number(raw(1)) + "): the nearest point of the box is picked";
+                         curve_number(raw(1)) + "): the point of the box nearest to it in the test's response is picked";
+    }
   }
-  if (answers) st.chosen = full_point(st, box_point(st, u_pick));
+  if (moves && !answers)
+    report["note"] = "the slope is not told from zero at 5 % (p = " + curve_number(p_slope) +
+                     "): the point rests on a response that may be flat, and the posterior's interval says how far";
+  if (moves) st.chosen = full_point(st, box_point(st, u_pick));
   report["picked"] = natural_of(s, st, st.chosen);
   st.curve_scene = scene;
 

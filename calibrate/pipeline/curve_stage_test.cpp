@@ -111,22 +111,30 @@ TEST_F(CurvePick, OverAFlatTargetsBoxThePlanePicksTheNearestPoint) {
   EXPECT_FALSE(r.contains("at_end"));
 }
 
-TEST_F(CurvePick, BeyondTheBoxTheNearestEdgeIsPickedAndSaid) {
-  // h = 13.3 needs a = 1.2 on b's midline: outside the box.
-  const auto r = pick([](double a, double) { return 10.0 + 2.75 * a; });
-  EXPECT_TRUE(r["answers"].get<bool>());
+TEST_F(CurvePick, BeyondTheBoxThePointNearestInResponseIsPicked) {
+  // h = 13.3 lies beyond the box's largest response, 10 + 2 a + b = 13 at (1, 1): that corner.
+  const auto r = pick([](double a, double b) { return 10.0 + 2.0 * a + b; });
   EXPECT_TRUE(r.contains("at_end")) << r.dump(1);
   EXPECT_NEAR(st_.chosen(0), 1.0, kExact);
+  EXPECT_NEAR(st_.chosen(1), 1.0, kExact);
 }
 
-TEST_F(CurvePick, ATestThatDoesNotAnswerKeepsTheConfirmedPoint) {
-  // A response that alternates between the corners (an interaction only): the plane's slopes are
-  // zero within its residual.
+TEST_F(CurvePick, AFlatTestKeepsTheConfirmedPoint) {
+  // A response that alternates between the corners (an interaction only): the plane has no slope.
   const auto r = pick([](double a, double b) { return 13.0 + ((a > 0.5) == (b > 0.5) ? 0.4 : -0.4); });
   EXPECT_FALSE(r["answers"].get<bool>()) << r.dump(1);
-  EXPECT_TRUE(r.contains("note"));
+  EXPECT_EQ(r["note"], "the test's model is flat: the confirmed point is kept");
   EXPECT_EQ(st_.chosen(0), 0.5);
   EXPECT_EQ(st_.chosen(1), 0.5);
+}
+
+TEST_F(CurvePick, AWeakSlopeMovesThePointAndSaysSo) {
+  // A slope with a residual as large (one residual df): not significant, the point still moves to
+  // where the plane meets the experiment, and the note says the evidence is weak.
+  const auto r = pick([](double a, double b) { return 12.5 + 0.6 * (a - 0.5) + ((a > 0.5) == (b > 0.5) ? 0.4 : -0.4); });
+  EXPECT_FALSE(r["answers"].get<bool>()) << r.dump(1);
+  EXPECT_NE(r["note"].get<std::string>().find("not told from zero"), std::string::npos) << r.dump(1);
+  EXPECT_GT(st_.chosen(0), 0.5);
 }
 
 TEST_F(CurvePick, IdentifiedOrSwitchedOffSkips) {
