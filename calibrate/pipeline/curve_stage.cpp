@@ -121,9 +121,9 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
                 "points ([verify] curve_points = " + std::to_string(n) + ")");
   report["mode"] = st.curve_mode;
   report["mode_reason"] = on_curve ? "the target's surrogate (refitted with its noise fixed) meets the experiment along a curve in the box"
-                                   : "the target's surrogate (refitted with its noise fixed) misses the experiment everywhere in the box: "
-                                     "its response is flat within the scatter, every point of the box is as good a solution, and the "
-                                     "test runs at the box's corners";
+                                   : "the target's surrogate (refitted with its noise fixed) misses the experiment everywhere in the box "
+                                     "(a response flat within its scatter, or an experiment beyond the box): the test runs at the "
+                                     "box's corners and the posterior weighs the target and the test over the whole box";
   // Box-coded position of design point i.
   const auto coded_at = [&](int i) -> Eigen::VectorXd {
     if (on_curve) return st.curve_path.at(static_cast<double>(i) / (n - 1));
