@@ -94,9 +94,9 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
     r.cpu_s = points_expected * replicates * per_point;
     e.stages.push_back(r);
   };
-  int kept = 0;
-  for (const StudyParameter& p : s.parameters) kept += p.calibrate ? 1 : 0;
-  kept = std::clamp(kept, 2, static_cast<int>(s.parameters.size()));
+  int calibrated = 0;
+  for (const StudyParameter& p : s.parameters) calibrated += p.calibrate ? 1 : 0;
+  const int kept = std::clamp(calibrated, 2, static_cast<int>(s.parameters.size()));
   const auto design = static_cast<int>(surrogate_design(s, kept).rows());
   add("screening", s.screen.runs, s.screen.runs, s.screen.replicates);
   add("ascent", 0, s.ascent.max_steps, s.screen.replicates);
@@ -113,29 +113,25 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   // under the first model.
   const std::vector<int> candidates = curve_candidates(s);
   int curve_scene = -1;
-  if (T == 1 && s.verify.curve_points > 0 && !candidates.empty()) {
-    int calibrated = 0;
-    for (const StudyParameter& p : s.parameters) calibrated += p.calibrate ? 1 : 0;
-    if (calibrated == 2) {
-      StageRuns curve{"curve", 0, 0, 0.0};
-      const int n = s.verify.curve_points;
-      curve_scene = candidates.front();
-      for (const int c : candidates)
-        if (cost[0][static_cast<std::size_t>(c)] > cost[0][static_cast<std::size_t>(curve_scene)]) curve_scene = c;
-      if (candidates.size() > 1) {
-        for (const int c : candidates) {
-          curve.runs += 2;
-          curve.cpu_s += 2.0 * cost[0][static_cast<std::size_t>(c)];
-        }
-        curve.runs += n - 2;
-        curve.cpu_s += (n - 2) * cost[0][static_cast<std::size_t>(curve_scene)];
-      } else {
-        curve.runs = n;
-        curve.cpu_s = n * cost[0][static_cast<std::size_t>(curve_scene)];
+  if (T == 1 && calibrated == 2 && s.verify.curve_points > 0 && !candidates.empty()) {
+    StageRuns curve{"curve", 0, 0, 0.0};
+    const int n = s.verify.curve_points;
+    curve_scene = candidates.front();
+    for (const int c : candidates)
+      if (cost[0][static_cast<std::size_t>(c)] > cost[0][static_cast<std::size_t>(curve_scene)]) curve_scene = c;
+    if (candidates.size() > 1) {
+      for (const int c : candidates) {
+        curve.runs += 2;
+        curve.cpu_s += 2.0 * cost[0][static_cast<std::size_t>(c)];
       }
-      curve.at_most = curve.runs;
-      e.stages.push_back(curve);
+      curve.runs += n - 2;
+      curve.cpu_s += (n - 2) * cost[0][static_cast<std::size_t>(curve_scene)];
+    } else {
+      curve.runs = n;
+      curve.cpu_s = n * cost[0][static_cast<std::size_t>(curve_scene)];
     }
+    curve.at_most = curve.runs;
+    e.stages.push_back(curve);
   }
   // [verify] calibrate_each_model: every other model repeats the calibration and the curve under
   // its own overrides (the same runs, each priced under that model).

@@ -258,11 +258,7 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
                               {"r2", r2}, {"p_slope", p_slope}, {"posterior_variance_factor", inflation}};
   report["answers"] = answers;
 
-  Eigen::Vector2d u0;
-  for (int q = 0; q < 2; ++q)
-    u0(q) = std::clamp((st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) /
-                           (0.5 * (st.box_hi(q) - st.box_lo(q))),
-                       -1.0, 1.0);
+  const Eigen::Vector2d u0 = box_coded(st, st.chosen);
   Eigen::Vector2d u_pick = u0;
   const Eigen::VectorXd slope = fit.coefficients.tail(p - 1);
   // A slope at rounding (a response that does not change) does not move the point.
@@ -308,15 +304,17 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   st.curve_scene = scene;
 
   // The test's verification under this model, from these runs: the model at the point.
-  const doe::GpPrediction here = curve_prediction(st, u_pick);
-  const double mean_se = std::sqrt(std::max(0.0, sigma2 * curve_features(st, u_pick).dot(fit.unscaled_covariance * curve_features(st, u_pick))));
+  // Its standard error is the fit's own at the point (not widened as the posterior's is).
+  const Eigen::VectorXd f_pick = curve_features(st, u_pick);
+  const double here_mean = f_pick.dot(fit.coefficients);
+  const double mean_se = std::sqrt(std::max(0.0, sigma2 * f_pick.dot(fit.unscaled_covariance * f_pick)));
   nlohmann::json v = {{"test", test.name}, {"label", test.name}, {"metric", test.metric}, {"role", "verification"},
                       {"n", ys.size()}, {"samples", samples}, {"seeds", seeds}, {"cpu_seconds", cpu / n},
-                      {"mean", here.mean}, {"sd", std::sqrt(sigma2)}, {"sd_df", df}, {"mean_se", mean_se},
+                      {"mean", here_mean}, {"sd", std::sqrt(sigma2)}, {"sd_df", df}, {"mean_se", mean_se},
                       {"experimental_mean", test.value},
                       {"experimental_sd", test.sd > 0.0 ? nlohmann::json(test.sd) : nlohmann::json(nullptr)},
-                      {"rel_error", here.mean / test.value - 1.0},
-                      {"within_sd", test.sd > 0.0 ? nlohmann::json(std::fabs(here.mean - test.value) <= test.sd) : nlohmann::json(nullptr)},
+                      {"rel_error", here_mean / test.value - 1.0},
+                      {"within_sd", test.sd > 0.0 ? nlohmann::json(std::fabs(here_mean - test.value) <= test.sd) : nlohmann::json(nullptr)},
                       {"source", "the " + std::to_string(ys.size()) + " runs " + (on_curve ? "along the solution curve" : "at the box's corners") +
                                      ": the " + (on_curve ? "line" : "plane") + " fitted to them at the point, its sd the residual sd"}};
   if (!failures.empty()) v["failures"] = failures;

@@ -83,6 +83,9 @@ void gather_surrogate_data(const StudyEvaluator& ev, const PipelineState& st, in
                            Eigen::VectorXd* y);
 // Natural values of the kept factors at box-coded u.
 Eigen::VectorXd box_point(const PipelineState& st, const Eigen::VectorXd& u);
+// The other way: the kept factors of `natural` (one value per study parameter), box-coded and
+// clamped to the box.
+Eigen::VectorXd box_coded(const PipelineState& st, const Eigen::VectorXd& natural);
 // Fits the surrogates to every record on the kept subspace and solves for the target(s).
 nlohmann::json fit_and_solve(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& label);
 // Confirms at st.chosen; while not converged and the budget allows, adds infill points and
@@ -91,10 +94,11 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
 // After confirmation: the posterior of the kept parameters over the surrogate box, their 95 %
 // credible intervals and whether each is identified (posterior_stage.cpp; docs/calibrate.md).
 nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store);
-// After the posterior, when one target leaves two kept parameters on a curve: a verification test
-// (the study's `curve_test`, else the one that answers most along the curve) runs at points along
-// it; the line fitted to its response picks the point where it meets the test's experiment, and
-// sets st.chosen there. Its runs count as that test's verification under the first model
+// After the posterior, when one target leaves two kept parameters not both identified: a
+// verification test (the study's `curve_test`, else the one that answers most between the design's
+// ends) runs at points along the target's solution curve, or at the box's corners when it has none;
+// the line (or plane) fitted to its response picks the point where it meets the test's experiment
+// and sets st.chosen there. Its runs count as that test's verification under st's model
 // (curve_stage.cpp; docs/calibrate.md, "The point on the curve"). The report says why when it does not apply.
 nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore& store, const std::string& out_dir);
 // The verification tests (StudyConfig::scene_of) that can pick the point: the study's curve_test,

@@ -111,8 +111,7 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
   // refitted surrogate's mean (for the pick along it, curve_stage.cpp), traced once.
   if (s.targets.size() == 1 && k == 2 && !st.curve_path.usable() && st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
     doe::LevelCurveOptions lo;
-    for (int q = 0; q < 2; ++q)
-      lo.anchor(q) = std::clamp((st.chosen(st.kept[static_cast<std::size_t>(q)]) - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q), -1.0, 1.0);
+    lo.anchor = box_coded(st, st.chosen);
     const auto gp = gps.front();
     st.curve_path = doe::trace_level_curve([gp](const Eigen::VectorXd& u) { return gp->predict(u).mean; }, s.targets[0].value, lo);
   }

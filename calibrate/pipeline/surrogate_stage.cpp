@@ -259,6 +259,12 @@ Eigen::VectorXd box_point(const PipelineState& st, const Eigen::VectorXd& u) {
   return box_mid(st) + box_half(st).cwiseProduct(u);
 }
 
+Eigen::VectorXd box_coded(const PipelineState& st, const Eigen::VectorXd& natural) {
+  Eigen::VectorXd u(static_cast<Eigen::Index>(st.kept.size()));
+  for (Eigen::Index q = 0; q < u.size(); ++q) u(q) = natural(st.kept[static_cast<std::size_t>(q)]);
+  return (u - box_mid(st)).cwiseQuotient(box_half(st)).cwiseMax(-1.0).cwiseMin(1.0);
+}
+
 nlohmann::json run_surrogate_design(StudyEvaluator& ev, PipelineState& st, StudyStore& store) {
   const StudyConfig& s = ev.study();
   const int k = static_cast<int>(st.kept.size());
