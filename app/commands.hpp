@@ -34,5 +34,6 @@ void add_report_command(CLI::App& app, GlobalOptions& g);
 void add_study_command(CLI::App& app, GlobalOptions& g);
 void add_bench_command(CLI::App& app, GlobalOptions& g);
 void add_export_command(CLI::App& app, GlobalOptions& g);
+void add_keys_command(CLI::App& app, GlobalOptions& g);
 
 }  // namespace seedcal

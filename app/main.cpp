@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
   add_study_command(app, g);
   add_bench_command(app, g);
   add_export_command(app, g);
+  add_keys_command(app, g);
   try {
     MpiSession mpi(&argc, &argv);  // only when started by mpirun
     app.parse(argc, argv);

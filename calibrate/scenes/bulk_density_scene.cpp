@@ -1,25 +1,47 @@
 // `kind = "bulk_density"`: schema in docs/scenes/bulk_density.md.
 #include "calibrate/scenes/rig_checks.hpp"
+#include "calibrate/scenes/scene_schema.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/bulk_density.hpp"
 #include "store/atomic_file.hpp"
 
 namespace seedcal {
 
+namespace {
+
+// The scene's schema (scene_schema.hpp): its keys, their defaults (BulkDensitySpec's), its metrics.
+SceneSchema<BulkDensitySpec> bulk_density_schema() {
+  using S = BulkDensitySpec;
+  SceneSchema<S> s("bulk_density", "`[bulk_density.paper]` / `[bulk_density.quick]`");
+  s.vec3("container_m", &S::container_m, Range::closed(0.005, 10.0), true, "m", "inner size x, y, z")
+      .material("wall_material", &S::wall_material, "the seeds touch the container", "the container's material")
+      .number("collar_fraction", &S::collar_fraction, Range::closed(0.0, 5.0), "", "collar height / container height")
+      .number("overfill", &S::overfill, Range::closed(0.5, 3.0), "", "poured mass / (volume x density x 0.62)")
+      .number("settle_energy_ratio", &S::settle_energy_ratio, Range::open(0.0, 1.0), "",
+              "settled below this kinetic energy per body / (m g d)")
+      .number("max_time_s", &S::max_time_s, Range::left_open(0.0, 100.0), "s", "longest settling");
+  s.metric("bulk_density_kg_m3", "kg/m3", "the index: mass of the seeds inside / container volume")
+      .metric("solid_fraction", "", "bulk / particle density")
+      .metric("seeds_inside", "", "seeds whose centre lies below the rim")
+      .metric("seeds_poured", "", "seeds poured")
+      .metric("mass_inside_kg", "kg", "mass of the seeds inside")
+      .metric("container_m", "m", "the container's inner size x, y, z");
+  return s;
+}
+
+}  // namespace
+
+SchemaTable bulk_density_schema_table() { return bulk_density_schema().doc(); }
+
 nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   BulkDensitySpec spec;
   fill_seed_spec(spec, cfg, ctx);
+  const SceneSchema<BulkDensitySpec> schema = bulk_density_schema();
   if (auto rig = rig_table(root, "bulk_density", cfg.fidelity)) {
-    spec.container_m = rig->vec3("container_m", Range::closed(0.005, 10.0), true).value_or(spec.container_m);
+    schema.read(*rig, {cfg.phys, cfg.seed_material}, spec);
     warn_if_small_rig(*rig, "container_m", "the container's smallest side", spec.container_m.minCoeff(), spec.seeds,
                       kBulkContainer);
-    spec.wall_material = cfg.phys.material(*rig, "wall_material", rig->string("wall_material"));
-    cfg.require_wall_interaction(*rig, "wall_material", spec.wall_material, "the seeds touch the container");
-    spec.collar_fraction = rig->number("collar_fraction", Range::closed(0.0, 5.0), 0.6);
-    spec.overfill = rig->number("overfill", Range::closed(0.5, 3.0), 1.0);
-    spec.settle_energy_ratio = rig->number("settle_energy_ratio", Range::open(0.0, 1.0), 1e-4);
-    spec.max_time_s = rig->number("max_time_s", Range::left_open(0.0, 100.0), 3.0);
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();
@@ -54,6 +76,7 @@ nlohmann::json run_bulk_density_scene(TomlReader& root, const SceneContext& ctx)
     write_file_atomic(ctx.out_dir + "/bulk_density_seeds.csv", csv);
     write_file_atomic(ctx.out_dir + "/bulk_density.svg", render_svg(view));
   }
+  schema.check_metrics(j);
   return j;
 }
 

@@ -2,9 +2,37 @@
 #include "calibrate/config/particle_config.hpp"
 #include "calibrate/config/physics_config.hpp"
 #include "calibrate/scenes/scene_registry.hpp"
+#include "calibrate/scenes/scene_schema.hpp"
 #include "solver/scenes/free_drop.hpp"
 
 namespace seedcal {
+
+namespace {
+
+// The scene's schema (scene_schema.hpp): its keys, their defaults (FreeDropSpec's), its metrics.
+SceneSchema<FreeDropSpec> free_drop_schema() {
+  using S = FreeDropSpec;
+  SceneSchema<S> s("free_drop", "`[free_drop]` (one body: both fidelities are the same scene)");
+  s.number("drop_height_m", &S::drop_height_m, Range::left_open(0.0, 100.0), "m",
+           "gap between the clump's lowest point and the plate at release")
+      .material("plate_material", &S::plate_material, "the seed lands on the plate", "the plate's material")
+      .flag("random_orientation", &S::random_orientation,
+            "a uniformly random orientation drawn from the run's seed (else the clump file's)")
+      .number("max_time_s", &S::max_time_s, Range::left_open(0.0, 1e3), "s", "longest run");
+  s.metric("rebound_height_m", "m", "the index: rise of the centre of mass above its height at touch-down")
+      .metric("contact_points", "", "the second index: most sphere-plate contacts at once during the impact")
+      .metric("impact_speed_m_s", "m/s", "speed of the centre of mass at the first touch")
+      .metric("rebound_speed_m_s", "m/s", "its speed when the clump leaves the plate")
+      .metric("restitution_com", "", "rebound speed / impact speed")
+      .metric("max_energy_ratio", "",
+              "largest total energy over the release energy (above 1 would mean the integrator made energy)")
+      .metric("orientation_quat", "", "the clump's orientation at release (w, x, y, z)");
+  return s;
+}
+
+}  // namespace
+
+SchemaTable free_drop_schema_table() { return free_drop_schema().doc(); }
 
 nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   root.string("kind");
@@ -18,13 +46,9 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   spec.observer = ctx.observer;
   const ParticleConfig particle = read_particle(root, phys, ctx.config_path, false);
   spec.body = particle.body;
+  const SceneSchema<FreeDropSpec> schema = free_drop_schema();
   if (auto fd = root.table("free_drop")) {
-    spec.drop_height_m = fd->number("drop_height_m", Range::left_open(0.0, 100.0), 0.150);
-    spec.plate_material = phys.material(*fd, "plate_material", fd->string("plate_material"));
-    phys.require_interaction(*fd, "plate_material", particle.material, spec.plate_material,
-                             "the seed lands on the plate");
-    spec.random_orientation = fd->boolean("random_orientation", true);
-    spec.max_time_s = fd->number("max_time_s", Range::left_open(0.0, 1e3), 2.0);
+    schema.read(*fd, {phys, particle.material}, spec);
     fd->check_unknown_keys();
   } else {
     root.error("free_drop", "is required: [free_drop] with plate_material (and drop_height_m)");
@@ -48,6 +72,7 @@ nlohmann::json run_free_drop_scene(TomlReader& root, const SceneContext& ctx) {
   j["orientation_quat"] = {r.orientation.w(), r.orientation.x(), r.orientation.y(), r.orientation.z()};
   j["particle"] = particle.description;
   add_run_report(j, r.run);
+  schema.check_metrics(j);
   return j;
 }
 

@@ -3,30 +3,54 @@
 #include <sstream>
 
 #include "calibrate/scenes/rig_checks.hpp"
+#include "calibrate/scenes/scene_schema.hpp"
 #include "calibrate/scenes/seed_scene_common.hpp"
 #include "solver/scenes/piling.hpp"
 #include "store/atomic_file.hpp"
 
 namespace seedcal {
 
+namespace {
+
+// The scene's schema (scene_schema.hpp): its keys, their defaults (PilingSpec's), its metrics.
+SceneSchema<PilingSpec> piling_schema() {
+  SceneSchema<PilingSpec> s("piling", "`[piling.paper]` / `[piling.quick]`");
+  s.material("plate_material", &PilingSpec::plate_material, "the seeds pile on the plate", "the plate's material")
+      .material("tube_material", &PilingSpec::tube_material, "the seeds fill the tube", "the tube's material")
+      .number("tube_diameter_m", &PilingSpec::tube_diameter_m, Range::closed(0.005, 5.0), "m", "tube inner diameter")
+      .number("fill_height_m", &PilingSpec::fill_height_m, Range::closed(0.005, 5.0), "m",
+              "fill height (sets the seed mass)")
+      .number("lift_speed_m_s", &PilingSpec::lift_speed_m_s, Range::closed(1e-5, 10.0), "m/s", "tube speed")
+      .integer("azimuths", &PilingSpec::azimuths, 2, 72, "sectors the heap is cut into")
+      .number("fit_window_min", &PilingSpec::window_lo, Range::closed(0.0, 0.9), "",
+              "lower end of the fit window, a fraction of the sector's height; below `fit_window_max`")
+      .number("fit_window_max", &PilingSpec::window_hi, Range::closed(0.1, 1.0), "",
+              "upper end of the fit window, a fraction of the sector's height")
+      .number("max_time_s", &PilingSpec::max_time_s, Range::left_open(0.0, 100.0), "s", "longest final settling");
+  s.metric("angle_of_repose_deg", "deg", "the index: mean of the sectors' angles")
+      .metric("angle_of_repose_sectors_sd_deg", "deg", "sd of the sectors' angles")
+      .metric("sector_angles_deg", "deg", "every sector's angle")
+      .metric("heap_radius_m", "m", "radius holding 95 % of the seed centres")
+      .metric("heap_height_m", "m", "highest sphere top")
+      .metric("heap_foot_radius_m", "m", "mean foot radius over the sectors")
+      .metric("tube_lift_m", "m", "how far the tube was lifted")
+      .metric("seeds", "", "seeds in the scene");
+  return s;
+}
+
+}  // namespace
+
+SchemaTable piling_schema_table() { return piling_schema().doc(); }
+
 nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
   SeedSceneConfig cfg = read_seed_scene(root, ctx.config_path);
   PilingSpec spec;
   fill_seed_spec(spec, cfg, ctx);
+  const SceneSchema<PilingSpec> schema = piling_schema();
   if (auto rig = rig_table(root, "piling", cfg.fidelity)) {
-    spec.plate_material = cfg.phys.material(*rig, "plate_material", rig->string("plate_material"));
-    spec.tube_material = cfg.phys.material(*rig, "tube_material", rig->string("tube_material"));
-    cfg.require_wall_interaction(*rig, "plate_material", spec.plate_material, "the seeds pile on the plate");
-    cfg.require_wall_interaction(*rig, "tube_material", spec.tube_material, "the seeds fill the tube");
-    spec.tube_diameter_m = rig->number("tube_diameter_m", Range::closed(0.005, 5.0), spec.tube_diameter_m);
+    schema.read(*rig, {cfg.phys, cfg.seed_material}, spec);
     warn_if_small_rig(*rig, "tube_diameter_m", "the tube's diameter", spec.tube_diameter_m, spec.seeds, kPilingTube);
-    spec.fill_height_m = rig->number("fill_height_m", Range::closed(0.005, 5.0), spec.fill_height_m);
-    spec.lift_speed_m_s = rig->number("lift_speed_m_s", Range::closed(1e-5, 10.0), spec.lift_speed_m_s);
-    spec.azimuths = static_cast<int>(rig->integer("azimuths", 2, 72, spec.azimuths));
-    spec.window_lo = rig->number("fit_window_min", Range::closed(0.0, 0.9), spec.window_lo);
-    spec.window_hi = rig->number("fit_window_max", Range::closed(0.1, 1.0), spec.window_hi);
     if (spec.window_lo >= spec.window_hi) rig->error("fit_window_min", "must be below fit_window_max");
-    spec.max_time_s = rig->number("max_time_s", Range::left_open(0.0, 100.0), spec.max_time_s);
     rig->check_unknown_keys();
   }
   root.check_unknown_keys();
@@ -69,6 +93,7 @@ nlohmann::json run_piling_scene(TomlReader& root, const SceneContext& ctx) {
     }
     write_file_atomic(ctx.out_dir + "/piling.svg", render_svg(view));
   }
+  schema.check_metrics(j);
   return j;
 }
 
