@@ -127,9 +127,13 @@ nlohmann::json trend_study(const TrendOptions& o) {
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < n; ++i) {
     nlohmann::json row = {{"value", o.levels[i]}, {"set", set[i]}, {"status", "ok"}};
+    // Every run's own metrics, seed by seed (a drum's frames and wall layer, a heap's sectors): what
+    // the index alone does not say about the regime each level ran in.
+    row["runs"] = nlohmann::json::array();
     std::vector<double> index, cpu;
     for (std::size_t r = 0; r < reps; ++r) {
       const nlohmann::json& m = run[i * reps + r];
+      if (!m.is_null()) row["runs"].push_back(m);
       if (metric.empty()) metric = m.value("index_key", "");
       if (m.value("status", "ok") != "ok") {
         row["status"] = m["status"];

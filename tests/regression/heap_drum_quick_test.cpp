@@ -79,41 +79,22 @@ TEST(DrumQuick, SurfaceHasASensibleAngleAndTheRigsNumbers) {
   EXPECT_EQ(j["stop_reason"], "all frames taken");
 }
 
-// A shell of twelve flat facets (`shell_facets`, a drum made of plates) grips the seeds with its
-// edges at Table 6's seed-steel friction, where the smooth shell lets the bed slip once it has
-// tilted (its wall layer at -0.01 of the shell's speed at 2.5 s, seed 1): here the wall layer moves
-// with the shell on average (0.38 over 2-3 s, seed 1; docs/results/drum.md). The end faces stay
-// flat discs.
-TEST(DrumQuick, FacetedShellCarriesTheBed) {
-  const auto j = run_quick_scene("drum", "--seed 1 --set drum.quick.shell_facets=12 --set 'drum.quick.frame_times_s=[2.0,2.5,3.0]'",
-                                 "drum-facets");
-  expect_run_report(j);
-  EXPECT_EQ(j["shell_facets"], 12);
-  ASSERT_EQ(j["frames"].size(), 3u);
-  for (const auto& f : j["frames"]) EXPECT_GT(f["r2"].get<double>(), 0.8) << f.dump();
-  const double ratio = j["wall_layer_speed_ratio"].get<double>();
-  std::printf("drum quick, 12 facets, 5 rpm: %.1f deg, wall layer at %.2f of the shell's speed, %d of 3 frames slipping\n",
-              j["dynamic_angle_of_repose_deg"].get<double>(), ratio, j["slipping_frames"].get<int>());
-  EXPECT_GT(ratio, 0.1);
-  const double angle = j["dynamic_angle_of_repose_deg"].get<double>();
-  EXPECT_GT(angle, 30.0);
-  EXPECT_LT(angle, 55.0);
-}
-
 // The drum's angle rises with its speed: the shipped quick drum with every Table 6 value (nine-
-// sphere seeds, seed-steel friction 0.4) and a shell of twelve flat plates, which carries the bed
-// where the smooth shell lets it slip at every speed (docs/scenes/drum.md), from slumping at 5 rpm
+// sphere seeds, seed-steel friction 0.4) and a shell of twelve flat plates, from slumping at 5 rpm
 // (Froude number 2.8e-3) to cascading at 60 rpm (0.40), three seeds a speed, the angle read every
-// 0.1 s over 2-5 s (a slumping bed swings by 10 deg between avalanches, so the mean needs many
-// frames). Measured: 39.70 deg (sd 0.06) -> 43.18 (0.91), 5.41 pooled sd, 100-112 CPU s a run;
-// with frames over 2-8 s 39.47 (0.36) -> 42.95 (0.19). Over the paper's 5-15 rpm no rise is
-// resolved: +0.28 deg (0.8 pooled sd) read over 6 s, -0.35 deg (-1.01) over 28 s. The check is
-// the trend study's own (`seedcal study trend`: more than 2 pooled sd, every step the expected
-// way).
+// 0.1 s over 1.5-3 s (a slumping bed swings by 10 deg between avalanches, so the mean needs many
+// frames). The check is the trend study's own (`seedcal study trend`: more than 2 pooled sd, every
+// step the expected way); the rise reads about 4.5 deg whether the frames span 1.5 s or 6 s
+// (docs/results/drum.md).
+//
+// The twelve facets grip the seeds with their edges at Table 6's seed-steel friction, where the
+// smooth shell lets the bed slip once it has tilted (docs/scenes/drum.md): at 5 rpm the wall layer
+// moves with the shell on average (its speed ratio above 0.1, the scene's own threshold for a
+// slipping frame), read from the trend's 5 rpm runs.
 TEST(DrumSpeedTrend, AngleRisesFromSlumpingToCascading) {
   const std::string out = testing::scratch_dir("drum-speed-trend");
-  std::string frames = "[2.0";
-  for (int i = 1; i <= 30; ++i) frames += "," + std::to_string(2.0 + 0.1 * i).substr(0, 3);
+  std::string frames = "[1.5";
+  for (int i = 1; i <= 15; ++i) frames += "," + std::to_string(1.5 + 0.1 * i).substr(0, 3);
   frames += "]";
   const auto r = testing::run_cli(
       "study trend --scene " + testing::source_dir() + "/data/scenes/jinong1/drum.toml" +
@@ -135,6 +116,19 @@ TEST(DrumSpeedTrend, AngleRisesFromSlumpingToCascading) {
   // Between the heap's static angle and a bed thrown off the shell (centrifuging at Fr = 1).
   EXPECT_GT(lo["mean"].get<double>(), 25.0);
   EXPECT_LT(hi["mean"].get<double>(), 60.0);
+
+  // The facets carry the bed at 5 rpm: every frame's surface is a line, the wall layer moves with
+  // the shell on average over the three seeds.
+  const auto& slow_runs = j["levels"][0]["runs"];
+  ASSERT_EQ(slow_runs.size(), 3u);
+  double ratio = 0.0;
+  for (const auto& run : slow_runs) {
+    EXPECT_EQ(run["shell_facets"], 12);
+    for (const auto& f : run["frames"]) EXPECT_GT(f["r2"].get<double>(), 0.8) << f.dump();
+    ratio += run["wall_layer_speed_ratio"].get<double>() / 3.0;
+  }
+  std::printf("drum quick, 12 facets, 5 rpm: wall layer at %.2f of the shell's speed (mean of seeds 1-3)\n", ratio);
+  EXPECT_GT(ratio, 0.1);
 }
 
 }  // namespace
