@@ -166,7 +166,7 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
         }
         tangential[k] = tk;
         if (keep_rolling) rolling[k] = rk;
-        live[k] = tk.isZero(0.0) ? 0 : 1;
+        live[k] = tk.isZero(0.0) && rk.isZero(0.0) ? 0 : 1;
       }
       for (std::size_t i = s_begin; i < s_end; ++i) built_at_[i] = spheres.position_m[i];
     }
@@ -183,8 +183,9 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
 
 void VerletList::mark_live() {
   live_.resize(tangential_.size());
+  const bool rolling = !rolling_.empty();
   for (std::size_t k = 0; k < tangential_.size(); ++k)
-    live_[k] = tangential_[k].isZero(0.0) ? 0 : 1;
+    live_[k] = tangential_[k].isZero(0.0) && (!rolling || rolling_[k].isZero(0.0)) ? 0 : 1;
 }
 
 void VerletList::renumber(const std::vector<std::uint32_t>& new_of_old, const SphereState& spheres) {

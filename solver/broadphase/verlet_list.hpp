@@ -32,8 +32,8 @@ class VerletList {
   const std::vector<std::uint32_t>& group_start() const { return group_start_; }
   std::vector<Vec3>& tangential() { return tangential_; }
   std::vector<Vec3>& rolling() { return rolling_; }
-  // Per pair: 1 when its tangential spring may be non-zero (it touched at the last force pass), 0
-  // when the spring is zero. The batched force pass keeps it (sim/contact_forces.cpp) and clears
+  // Per pair: 1 when its tangential (or rolling) spring may be non-zero (it touched at the last
+  // force pass), 0 when the springs are zero. The batched force pass keeps it (sim/contact_forces.cpp) and clears
   // only the springs of pairs that came apart, instead of rewriting every listed pair's spring at
   // every step; build() and renumber() set it from the springs they carry over.
   std::vector<std::uint8_t>& live() { return live_; }

@@ -3,10 +3,9 @@
 #include <string>
 #include <string_view>
 
-namespace seedcal {
+#include "solver/contact/model_kinds.hpp"
 
-enum class NormalModel { hertz_mindlin, hmnr };
-enum class RollingModel { none, cdt, epsd };
+namespace seedcal {
 
 struct ContactOptions {
   NormalModel normal = NormalModel::hertz_mindlin;
@@ -29,7 +28,7 @@ struct ContactOptions {
   // 10 rad/s per step for a 9 mm seed at 200 kPa (docs/contact_models.md). Config: [contact]
   // cdt_at_rest = "static" (true) or "literal" (false).
   bool cdt_stop_limit = true;
-  // Which velocity the dashpots see (contact/hertz_mindlin.hpp, "Which velocity each term uses").
+  // Which velocity the dashpots see (contact/contact_law.hpp, "Which velocity each term uses").
   // false (the default): the half-step velocity v_{n+1/2}, as LAMMPS and LIGGGHTS do; stable in
   // confined, many-contact packings up to about twice the damping rate of the other choice. true:
   // the predicted end-of-step velocity v_{n+1/2} + dt/2 F_n / m, which gives the set restitution of a

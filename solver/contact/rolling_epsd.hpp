@@ -1,6 +1,6 @@
 #pragma once
-// Elastic-plastic spring-dashpot (EPSD) rolling resistance, "type C" of Ai, Chen, Rotter & Ooi
-// (2011), Powder Technol. 206, 269-282, eqs. 11-17:
+// Rolling slot, elastic-plastic spring-dashpot (EPSD), "type C" of Ai, Chen, Rotter & Ooi (2011),
+// Powder Technol. 206, 269-282, eqs. 11-17:
 //
 //   k_r   = 2.25 k_n mu_r^2 R*^2                      rolling stiffness (eq. 13; Iwashita & Oda)
 //   dM_k  = -k_r dtheta_r,  dtheta_r = w_r dt         incremental spring moment (eq. 11)
@@ -11,49 +11,56 @@
 //
 // w_r is the relative rolling angular velocity (w_i - w_j) projected on the tangent plane (the
 // twisting component is not resisted). The spring moment is history: it is carried per contact and
-// rotated with the contact normal. Stable at rest: a resting particle has w_r = 0 and no torque.
-#include <cmath>
+// turned with the contact normal, its magnitude kept. Stable at rest: a resting particle has
+// w_r = 0 and no torque.
+#include "solver/contact/lanes.hpp"
 
-#include "solver/core/vec.hpp"
+namespace seedcal::lanes {
 
-namespace seedcal {
-
-struct EpsdInput {
-  Vec3 normal;              // contact normal (unit)
-  Vec3 relative_spin;       // w_i - w_j at the half step, rad/s (spring increment)
-  Vec3 relative_spin_end;   // w_i - w_j from the predicted end-of-step spins (dashpot; see
-                            // hertz_mindlin.hpp for why the two differ)
-  double rolling_friction;  // mu_r
-  double normal_force_n;
-  double normal_stiffness_n_m;  // k_n (the Hertz tangent stiffness Sn)
-  double r_star_m;
-  double rolling_inertia;   // I_r, kg m2
-  double damping_ratio;     // eta_r
-  double dt_s;
+template <class T>
+struct EpsdIn {
+  V3<T> normal;             // contact normal (unit)
+  V3<T> relative_spin;      // w_i - w_j at the half step, rad/s (spring increment)
+  V3<T> relative_spin_end;  // w_i - w_j seen by the dashpots (contact_law.hpp says which)
+  T rolling_friction;       // mu_r
+  T normal_force_n;
+  T normal_stiffness_n_m;   // k_n (the Hertz tangent stiffness Sn)
+  T r_star_m;
+  T rolling_inertia_kg_m2;  // I_r
 };
 
-// Returns the torque on i (j receives the opposite) and updates the spring moment history.
-inline Vec3 epsd_torque(const EpsdInput& in, Vec3& spring_moment) {
-  if (in.rolling_friction == 0.0) { spring_moment.setZero(); return Vec3::Zero(); }
-  const Vec3 wr = in.relative_spin - in.relative_spin.dot(in.normal) * in.normal;
-  const double kr = 2.25 * in.normal_stiffness_n_m * in.rolling_friction * in.rolling_friction *
-                    in.r_star_m * in.r_star_m;
-  // Rotate the stored moment into the current tangent plane, preserving its magnitude.
-  const double len0 = spring_moment.norm();
-  spring_moment -= spring_moment.dot(in.normal) * in.normal;
-  const double len1 = spring_moment.norm();
-  if (len1 > 0.0) spring_moment *= len0 / len1;
+// The rolling torque on i (j receives the opposite); updates the spring moment `m_k` (N m).
+template <class O>
+[[gnu::always_inline]] inline V3<typename O::T> epsd_torque(const EpsdIn<typename O::T>& in,
+                                                            double damping_ratio, double dt_s,
+                                                            V3<typename O::T>& m_k) {
+  using T = typename O::T;
+  const T zero = O::splat(0.0);
+  const V3<T>& n = in.normal;
+  const V3<T> wr = in.relative_spin - dot(in.relative_spin, n) * n;
+  const T kr = 2.25 * in.normal_stiffness_n_m * in.rolling_friction * in.rolling_friction *
+               in.r_star_m * in.r_star_m;
+  // Into the current tangent plane, its magnitude kept.
+  const T len0 = O::sqrt(dot(m_k, m_k));
+  m_k = m_k - dot(m_k, n) * n;
+  const T len1 = O::sqrt(dot(m_k, m_k));
+  m_k = (len1 > zero ? len0 / len1 : O::splat(1.0)) * m_k;
 
-  spring_moment -= kr * in.dt_s * wr;
-  const double m_max = in.rolling_friction * in.r_star_m * std::abs(in.normal_force_n);
-  const double m = spring_moment.norm();
-  if (m >= m_max) {
-    if (m > 0.0) spring_moment *= m_max / m;
-    return spring_moment;  // fully mobilised: no damping (type C, f = 0)
-  }
-  const double cr = in.damping_ratio * 2.0 * std::sqrt(in.rolling_inertia * kr);
-  const Vec3 wr_end = in.relative_spin_end - in.relative_spin_end.dot(in.normal) * in.normal;
-  return spring_moment - cr * wr_end;
+  m_k = m_k - (kr * dt_s) * wr;
+  const T m_max = in.rolling_friction * in.r_star_m * O::abs(in.normal_force_n);
+  const T m = O::sqrt(dot(m_k, m_k));
+  const auto mobilised = m >= m_max;
+  // Fully mobilised: the spring held at the limit, no damping (type C, f = 0).
+  const V3<T> at_limit = (m > zero ? m_max / m : O::splat(1.0)) * m_k;
+  const T cr = damping_ratio * 2.0 * O::sqrt(in.rolling_inertia_kg_m2 * kr);
+  const V3<T> wr_end = in.relative_spin_end - dot(in.relative_spin_end, n) * n;
+  m_k = select(mobilised, at_limit, m_k);
+  const V3<T> torque = select(mobilised, at_limit, m_k - cr * wr_end);
+  // No rolling friction: no spring and no torque.
+  const auto off = in.rolling_friction == zero;
+  const V3<T> none{zero, zero, zero};
+  m_k = select(off, none, m_k);
+  return select(off, none, torque);
 }
 
-}  // namespace seedcal
+}  // namespace seedcal::lanes

@@ -9,7 +9,7 @@
 
 #include <omp.h>
 
-#include "solver/contact/rolling_cdt.hpp"
+#include "solver/contact/rolling_cdt_torque.hpp"
 #include "solver/sim/contact_forces.hpp"
 #include "solver/sim/phase_clock.hpp"
 #include "solver/sim/simulation.hpp"

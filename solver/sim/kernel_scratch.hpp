@@ -23,6 +23,8 @@ struct alignas(64) KernelScratch {
   std::vector<double> touch_scale;        // HMNR: each touching pair's damping scale
   std::vector<double> ones;               // Hertz-Mindlin: 1.0 for every pair (never written)
   std::vector<WallContactIn> wall_in;     // touching sphere-wall contacts of a batch
+  std::vector<double> wall_scale;         // their damping scales (1, or HMNR's)
+  std::vector<WallRollingIn> wall_rolling;  // EPSD: their rolling springs' inputs
   std::vector<WallContactOut> wall_out;
   std::vector<WallSide> wall_side;
 };

@@ -1,6 +1,7 @@
 #pragma once
-// The sphere-sphere force kernel for a batch of touching pairs, and its sphere-wall twin, (Hertz-Mindlin with or without
-// HMNR, with no rolling friction or with CDT): the same code on one lane (pair_batch_scalar.cpp, any x86-64),
+// The sphere-sphere force kernel for a batch of touching pairs, and its sphere-wall twin: the
+// contact law (contact/contact_law.hpp, any normal and rolling model) on one lane
+// (pair_batch_scalar.cpp, any x86-64),
 // four (pair_batch_avx2.cpp, AVX2) or eight (pair_batch_avx512.cpp, AVX-512F), chosen once per
 // run. All give the same bits: the lanes run the same operations in the same order without fused
 // multiply-adds, and the results are added to the bodies in the order of the batch (tested in
@@ -11,6 +12,8 @@
 // (sim/contact_view.hpp checks the layouts below against the real records).
 #include <cstddef>
 #include <cstdint>
+
+#include "solver/contact/model_kinds.hpp"
 
 namespace seedcal {
 
@@ -43,10 +46,14 @@ struct PairBatchArgs {
   const std::uint32_t* si = nullptr;  // neighbour list: sphere i of pair k
   const std::uint32_t* sj = nullptr;
   double* tangential_m = nullptr;  // 3 doubles per pair: the tangential spring
+  double* rolling_m = nullptr;     // EPSD: 3 doubles per pair, the rolling spring moment (N m)
+  const double* body_mass_kg = nullptr;           // EPSD: each body's mass
+  const double* body_inertia_kg_m2 = nullptr;     // EPSD: each body's principal inertia (3)
   double dt_s = 0.0;
   bool clip_attractive = false;
-  bool cdt = false;                // add mu_r |Fn| R_i to each body's rolling capacity
+  RollingModel rolling = RollingModel::none;
   bool cdt_lever_from_centre_of_mass = false;
+  double epsd_damping_ratio = 0.0;
 };
 
 // What ThreadStats::note() records, gathered over a batch.
@@ -67,7 +74,7 @@ struct alignas(64) WallContactIn {
   double wall_velocity_m_s[3];   // the wall's material velocity at the contact point
   double mass_kg;                // m*: the body's mass (the wall's is infinite)
   double rolling_lever_m;        // CDT: the lever R_i of the capacity mu_r |Fn| R_i
-  double damping_scale;          // 1, or HMNR's 1/sqrt(touching pairs of the body and wall)
+  double spare;                  // keeps the record at 16 doubles
   std::uint32_t body;            // BodyView record
   std::uint32_t constants;       // index of the material pair in pair_constants
   std::uint64_t pair;            // index in the wall contact list: its tangential spring
@@ -80,27 +87,42 @@ struct WallContactOut {
   double roll_capacity_n_m;     // CDT capacity mu_r |Fn| R_i (0 without CDT)
   double normal_force_n;        // signed, positive = repulsive
   double normal_stiffness_n_m;  // Sn
+  double rolling_torque_n_m[3]; // EPSD: on the sphere's body; the wall receives the opposite
+};
+
+// EPSD only: what the rolling spring of a sphere-wall contact needs beyond WallContactIn.
+struct WallRollingIn {
+  double wall_spin_rad_s[3];     // the wall's angular velocity (world)
+  double rolling_inertia_kg_m2;  // I_r: the body's about the contact point (rolling_epsd.hpp)
 };
 
 struct WallBatchArgs {
   const double* bodies = nullptr;                      // BodyView records
   const BatchPairConstants* pair_constants = nullptr;
   double* tangential_m = nullptr;                      // the wall contact list's springs
+  double* rolling_m = nullptr;                         // EPSD: its rolling springs
   double dt_s = 0.0;
   bool clip_attractive = false;
-  bool cdt = false;
+  RollingModel rolling = RollingModel::none;
+  double epsd_damping_ratio = 0.0;
 };
 
-// Hertz-Mindlin (and the CDT capacity) of the touching sphere-wall contacts in[0..n), springs
-// updated in place; results in out[0..n). The caller adds them to bodies and walls in order.
-using WallBatchFn = void (*)(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                             WallContactOut* out);
-void wall_batch_scalar(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                       WallContactOut* out);
-void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                     WallContactOut* out);
-void wall_batch_avx512(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                       WallContactOut* out);
+// One batch of touching sphere-wall contacts: in[0..n) with damping scale scale[i] (1, or HMNR's
+// 1/sqrt(touching pairs of the body and wall)) and, for EPSD, rolling[0..n).
+struct WallBatch {
+  const WallContactIn* in = nullptr;
+  const double* scale = nullptr;
+  const WallRollingIn* rolling = nullptr;
+  std::size_t n = 0;
+  WallContactOut* out = nullptr;
+};
+
+// The contact law of a batch's contacts, springs updated in place; results in out[0..n). The
+// caller adds them to bodies and walls in order.
+using WallBatchFn = void (*)(const WallBatchArgs& args, const WallBatch& batch);
+void wall_batch_scalar(const WallBatchArgs& args, const WallBatch& batch);
+void wall_batch_avx2(const WallBatchArgs& args, const WallBatch& batch);
+void wall_batch_avx512(const WallBatchArgs& args, const WallBatch& batch);
 WallBatchFn choose_wall_batch(int max_lanes);
 
 // Forces of the touching pairs pairs[0..n) of the neighbour list (every one must touch), with

@@ -61,12 +61,11 @@ struct Avx2Ops {
 
 void pair_batch_avx2(const PairBatchArgs& args, const std::uint32_t* pairs, const double* scale,
                      std::size_t n, PairBatchStats& stats) {
-  lanes::pair_batch_lanes<Avx2Ops>(args, pairs, scale, n, stats);
+  lanes::pair_batch<Avx2Ops>(args, pairs, scale, n, stats);
 }
 
-void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                     WallContactOut* out) {
-  lanes::wall_batch_lanes<Avx2Ops>(args, in, n, out);
+void wall_batch_avx2(const WallBatchArgs& args, const WallBatch& batch) {
+  lanes::wall_batch<Avx2Ops>(args, batch);
 }
 
 }  // namespace seedcal
@@ -77,9 +76,8 @@ void pair_batch_avx2(const PairBatchArgs& args, const std::uint32_t* pairs, cons
                      std::size_t n, PairBatchStats& stats) {
   pair_batch_scalar(args, pairs, scale, n, stats);
 }
-void wall_batch_avx2(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                     WallContactOut* out) {
-  wall_batch_scalar(args, in, n, out);
+void wall_batch_avx2(const WallBatchArgs& args, const WallBatch& batch) {
+  wall_batch_scalar(args, batch);
 }
 }  // namespace seedcal
 #endif

@@ -83,12 +83,11 @@ struct Avx512Ops {
 
 void pair_batch_avx512(const PairBatchArgs& args, const std::uint32_t* pairs, const double* scale,
                        std::size_t n, PairBatchStats& stats) {
-  lanes::pair_batch_lanes<Avx512Ops>(args, pairs, scale, n, stats);
+  lanes::pair_batch<Avx512Ops>(args, pairs, scale, n, stats);
 }
 
-void wall_batch_avx512(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                       WallContactOut* out) {
-  lanes::wall_batch_lanes<Avx512Ops>(args, in, n, out);
+void wall_batch_avx512(const WallBatchArgs& args, const WallBatch& batch) {
+  lanes::wall_batch<Avx512Ops>(args, batch);
 }
 
 }  // namespace seedcal
@@ -99,9 +98,8 @@ void pair_batch_avx512(const PairBatchArgs& args, const std::uint32_t* pairs, co
                        std::size_t n, PairBatchStats& stats) {
   pair_batch_scalar(args, pairs, scale, n, stats);
 }
-void wall_batch_avx512(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                       WallContactOut* out) {
-  wall_batch_scalar(args, in, n, out);
+void wall_batch_avx512(const WallBatchArgs& args, const WallBatch& batch) {
+  wall_batch_scalar(args, batch);
 }
 }  // namespace seedcal
 #endif

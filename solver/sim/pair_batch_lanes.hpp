@@ -1,21 +1,21 @@
 #pragma once
-// The body of the batch kernel (sim/pair_batch.hpp) for a lane type `O` (contact/
-// hertz_mindlin_lanes.hpp): O::lanes pairs are loaded into lanes, their forces computed together,
-// and the results added to the bodies one pair at a time in batch order. Included only by
-// pair_batch_scalar.cpp and pair_batch_avx2.cpp, each with its own `O` in an anonymous namespace.
+// The batch kernels (sim/pair_batch.hpp) for a lane type `O` (contact/lanes.hpp) and a rolling
+// model RM: O::lanes contacts are gathered into lanes, the contact law (contact/contact_law.hpp)
+// computed for all of them at once, and the results added to the bodies one contact at a time in
+// batch order. Included only by pair_batch_scalar.cpp, pair_batch_avx2.cpp and
+// pair_batch_avx512.cpp, each with its own `O` in an anonymous namespace.
 //
-// Per pair, from the packed views (sim/contact_view.hpp), as in the general kernel
-// (sim/contact_forces.cpp): the normal n = (x_j - x_i) / |x_j - x_i|, the overlap
-// d = r_i + r_j - |x_j - x_i|, the contact point c = x_i + (r_i - d/2) n, the lever arms from
-// each body's centre of mass, the relative velocity of the contact points at the half step and
-// predicted at the step's end, R* = r_i r_j / (r_i + r_j), m* = 1 / (1/m_i + 1/m_j); then
-// Hertz-Mindlin, the torques of the force about each centre of mass and the CDT capacities
-// mu_r |Fn| R (contact/rolling_cdt.hpp).
+// Sphere-sphere, per pair, from the packed views (sim/contact_view.hpp): the normal
+// n = (x_j - x_i) / |x_j - x_i|, the overlap d = r_i + r_j - |x_j - x_i|, the contact point
+// c = x_i + (r_i - d/2) n, the lever arms from each body's centre of mass, the relative velocity
+// of the contact points at the half step and as the dashpots see it, R* = r_i r_j / (r_i + r_j),
+// m* = 1 / (1/m_i + 1/m_j). Sphere-wall: the same from the record the wall pass filled (the
+// shape's nearest point; R* = r, m* = m, the wall's velocity at the contact point subtracted).
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 
-#include "solver/contact/hertz_mindlin_lanes.hpp"
+#include "solver/contact/contact_law.hpp"
 #include "solver/sim/pair_batch.hpp"
 
 namespace seedcal::lanes {
@@ -49,12 +49,14 @@ inline constexpr std::size_t kPrefetchAhead = 8;
   }
 }
 
-template <class O>
+template <class O, RollingModel RM>
 void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const double* scale,
                       std::size_t n, PairBatchStats& stats) {
   using T = typename O::T;
   namespace L = view_layout;
   constexpr int W = O::lanes;
+  constexpr bool epsd = RM == RollingModel::epsd;
+  const ContactSettings settings{a.dt_s, a.clip_attractive, a.epsd_damping_ratio};
   // Largest overlap and normal force over the batch, lane by lane (an unused lane repeats a pair,
   // which does not change a maximum); folded into `stats` at the end.
   T max_overlap = O::splat(stats.max_overlap_m), max_fn = O::splat(stats.max_fn_n);
@@ -65,6 +67,8 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     // Unused lanes repeat the last pair; their results are dropped.
     std::uint32_t k[W], bi[W], bj[W];
     const double *pi[W], *pj[W], *qi[W], *qj[W], *hist[W], *pc[W], *sc[W];
+    // EPSD: the rolling spring, and each body's principal inertia and mass.
+    [[maybe_unused]] const double *roll[W], *ii[W], *ij[W], *mi[W], *mj[W];
     for (int l = 0; l < W; ++l) {
       const std::size_t idx = base + static_cast<std::size_t>(l < used ? l : used - 1);
       k[l] = pairs[idx];
@@ -74,11 +78,18 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
       pj[l] = a.spheres + static_cast<std::size_t>(s_j) * L::kSphereStride;
       bi[l] = a.sphere_body[s_i];
       bj[l] = a.sphere_body[s_j];
-      const std::uint16_t mi = a.sphere_material[s_i], mj = a.sphere_material[s_j];
+      const std::uint16_t mat_i = a.sphere_material[s_i], mat_j = a.sphere_material[s_j];
       qi[l] = a.bodies + static_cast<std::size_t>(bi[l]) * L::kBodyStride;
       qj[l] = a.bodies + static_cast<std::size_t>(bj[l]) * L::kBodyStride;
       hist[l] = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
-      pc[l] = &a.pair_constants[static_cast<std::size_t>(mi) * a.materials + mj].e_star_pa;
+      pc[l] = &a.pair_constants[static_cast<std::size_t>(mat_i) * a.materials + mat_j].e_star_pa;
+      if constexpr (epsd) {
+        roll[l] = a.rolling_m + 3 * static_cast<std::size_t>(k[l]);
+        ii[l] = a.body_inertia_kg_m2 + 3 * static_cast<std::size_t>(bi[l]);
+        ij[l] = a.body_inertia_kg_m2 + 3 * static_cast<std::size_t>(bj[l]);
+        mi[l] = a.body_mass_kg + bi[l];
+        mj[l] = a.body_mass_kg + bj[l];
+      }
     }
     static_assert(offsetof(BatchPairConstants, e_star_pa) == 0);
     // Four consecutive fields of each lane's record at once (a transpose where lanes are vectors).
@@ -113,45 +124,72 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     O::load4(qj, L::kBodyVelocity, vj.x, vj.y, vj.z, wj.x);
     O::load4(qj, L::kBodyVelocity + 4, wj.y, wj.z, vej.x, vej.y);
     O::load4(qj, L::kBodyVelocity + 8, vej.z, wej.x, wej.y, wej.z);
-    const V3<T> vrel = (vi + cross(wi, rci)) - (vj + cross(wj, rcj));
-    const V3<T> vrel_end = (vei + cross(wei, rci)) - (vej + cross(wej, rcj));
-    const T m_star = 1.0 / (inv_mi + inv_mj);
-    const T r_star = ri * rj / rs;
 
     T e_star, beta, mu_s, mu_r;
     O::load4(pc, 0, e_star, beta, mu_s, mu_r);
-    const HmConstants<T> hc{e_star, beta, mu_s, O::gather(pc, 4)};
+    const ContactLaw<T> law{e_star, beta, mu_s, mu_r, O::gather(pc, 4)};
+    const ContactKinematics<T> kin{normal,
+                                   overlap,
+                                   ri * rj / rs,
+                                   1.0 / (inv_mi + inv_mj),
+                                   (vi + cross(wi, rci)) - (vj + cross(wj, rcj)),
+                                   (vei + cross(wei, rci)) - (vej + cross(wej, rcj)),
+                                   O::gather(sc, 0)};
+    ContactRotation<T, 2> rot;
+    rot.arm_m[0] = rci;
+    rot.arm_m[1] = rcj;
     V3<T> t = load3<O>(hist, 0);
-    const HmResult<T> f = hertz_mindlin_lanes<O>(hc, normal, overlap, r_star, m_star, vrel,
-                                                 vrel_end, t, a.dt_s, O::gather(sc, 0),
-                                                 a.clip_attractive);
-    const V3<T> ti = cross(rci, f.force_on_i_n), tj = cross(rcj, f.force_on_i_n);
-    T roll_i = zero, roll_j = zero;
-    if (a.cdt) {
-      const T c = mu_r * O::abs(f.normal_force_n);
-      roll_i = c * (a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rci, rci)) : arm_i);
-      roll_j = c * (a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j);
+    V3<T> m_k{zero, zero, zero};
+    if constexpr (RM == RollingModel::cdt) {
+      rot.cdt_lever_m[0] = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rci, rci)) : arm_i;
+      rot.cdt_lever_m[1] = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j;
+    } else if constexpr (epsd) {
+      rot.relative_spin = wi - wj;
+      rot.relative_spin_end = wei - wej;
+      // Each body's inertia about the contact point: the mean principal moment plus m |r|^2.
+      const T inertia_i = (O::gather(ii, 0) + O::gather(ii, 1) + O::gather(ii, 2)) / 3.0 +
+                          O::gather(mi, 0) * dot(rci, rci);
+      const T inertia_j = (O::gather(ij, 0) + O::gather(ij, 1) + O::gather(ij, 2)) / 3.0 +
+                          O::gather(mj, 0) * dot(rcj, rcj);
+      rot.rolling_inertia_kg_m2 = inertia_i * inertia_j / (inertia_i + inertia_j);
+      m_k = load3<O>(roll, 0);
     }
+    const ContactResult<T, 2> f = contact_law<O, RM, 2>(law, kin, rot, t, m_k, settings);
 
     // Back to one pair at a time, in batch order: per lane, the eight doubles to add to body i's
     // accumulator (force, torque, rolling capacity, pad) and the eight to subtract from j's.
     alignas(64) double add_i[W][8], sub_j[W][8];
-    O::store_lanes8(add_i, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z, ti.x, ti.y, ti.z,
-                    roll_i, zero);
-    O::store_lanes8(sub_j, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z, tj.x, tj.y, tj.z,
-                    -roll_j, zero);
+    O::store_lanes8(add_i, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z,
+                    f.torque_n_m[0].x, f.torque_n_m[0].y, f.torque_n_m[0].z,
+                    f.roll_capacity_n_m[0], zero);
+    O::store_lanes8(sub_j, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z,
+                    f.torque_n_m[1].x, f.torque_n_m[1].y, f.torque_n_m[1].z,
+                    -f.roll_capacity_n_m[1], zero);
     static_assert(L::kAccForce == 0 && L::kAccTorque == 3 && L::kAccRollCapacity == 6 &&
                   L::kAccStride == 8);
-    alignas(64) double out[3][W];
-    const T* rows[3] = {&t.x, &t.y, &t.z};
-    for (int r = 0; r < 3; ++r) O::store(out[r], *rows[r]);
+    // The springs (tangential, then EPSD's rolling spring and torque), one row per component.
+    constexpr int kRows = epsd ? 9 : 3;
+    alignas(64) double out[kRows][W];
+    const T* rows[9] = {&t.x, &t.y, &t.z, &m_k.x, &m_k.y, &m_k.z, &f.rolling_torque_n_m.x,
+                        &f.rolling_torque_n_m.y, &f.rolling_torque_n_m.z};
+    for (int r = 0; r < kRows; ++r) O::store(out[r], *rows[r]);
     for (int l = 0; l < used; ++l) {
-      O::add8(a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride, add_i[l]);
-      O::sub8(a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride, sub_j[l]);
+      double* acc_i = a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride;
+      double* acc_j = a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride;
+      O::add8(acc_i, add_i[l]);
+      O::sub8(acc_j, sub_j[l]);
       a.touched[bi[l]] = 1;
       a.touched[bj[l]] = 1;
       double* spring = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
       for (int c = 0; c < 3; ++c) spring[c] = out[c][l];
+      if constexpr (epsd) {
+        double* rolling = a.rolling_m + 3 * static_cast<std::size_t>(k[l]);
+        for (int c = 0; c < 3; ++c) {
+          rolling[c] = out[3 + c][l];
+          acc_i[L::kAccTorque + c] += out[6 + c][l];
+          acc_j[L::kAccTorque + c] -= out[6 + c][l];
+        }
+      }
     }
     // ThreadStats::note (sim/contact_forces.hpp): the maxima in lanes, a deep overlap (rare) one
     // pair at a time.
@@ -184,33 +222,43 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
   }
 }
 
-// The wall batch kernel (sim/pair_batch.hpp): the same Hertz-Mindlin as above, with the wall as
-// the second body (R* = r, m* = m, the wall's velocity at the contact point subtracted).
-template <class O>
-void wall_batch_lanes(const WallBatchArgs& a, const WallContactIn* in, std::size_t n,
-                      WallContactOut* out) {
+// The wall batch kernel (sim/pair_batch.hpp): the same contact law, with the wall as the second
+// body.
+template <class O, RollingModel RM>
+void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
   using T = typename O::T;
   namespace L = view_layout;
   constexpr int W = O::lanes;
+  constexpr bool epsd = RM == RollingModel::epsd;
+  const ContactSettings settings{a.dt_s, a.clip_attractive, a.epsd_damping_ratio};
+  const WallContactIn* in = b.in;
+  const std::size_t n = b.n;
   static_assert(sizeof(WallContactIn) == 16 * sizeof(double));
   for (std::size_t base = 0; base < n; base += W) {
     const int used = n - base < static_cast<std::size_t>(W) ? static_cast<int>(n - base) : W;
     // Unused lanes repeat the last contact; their results are dropped.
-    const double *rec[W], *q[W], *pc[W], *hist[W];
+    const double *rec[W], *q[W], *pc[W], *hist[W], *sc[W];
+    [[maybe_unused]] const double *roll[W], *spin[W];  // EPSD
     for (int l = 0; l < W; ++l) {
-      const WallContactIn& c = in[base + static_cast<std::size_t>(l < used ? l : used - 1)];
+      const std::size_t idx = base + static_cast<std::size_t>(l < used ? l : used - 1);
+      const WallContactIn& c = in[idx];
       rec[l] = c.normal;
       q[l] = a.bodies + static_cast<std::size_t>(c.body) * L::kBodyStride;
       pc[l] = &a.pair_constants[c.constants].e_star_pa;
       hist[l] = a.tangential_m + 3 * c.pair;
+      sc[l] = b.scale + idx;
+      if constexpr (epsd) {
+        roll[l] = a.rolling_m + 3 * c.pair;
+        spin[l] = b.rolling[idx].wall_spin_rad_s;
+      }
     }
     static_assert(offsetof(WallContactIn, overlap_m) == 3 * sizeof(double) &&
                   offsetof(WallContactIn, lever_m) == 4 * sizeof(double) &&
                   offsetof(WallContactIn, radius_m) == 7 * sizeof(double) &&
                   offsetof(WallContactIn, wall_velocity_m_s) == 8 * sizeof(double) &&
                   offsetof(WallContactIn, mass_kg) == 11 * sizeof(double) &&
-                  offsetof(WallContactIn, rolling_lever_m) == 12 * sizeof(double) &&
-                  offsetof(WallContactIn, damping_scale) == 13 * sizeof(double));
+                  offsetof(WallContactIn, rolling_lever_m) == 12 * sizeof(double));
+    static_assert(offsetof(WallRollingIn, rolling_inertia_kg_m2) == 3 * sizeof(double));
     V3<T> n_, rc, vw;
     T overlap, radius, mass;
     O::load4(rec, 0, n_.x, n_.y, n_.z, overlap);
@@ -220,25 +268,53 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallContactIn* in, std::size
     O::load4(q, L::kBodyVelocity, v.x, v.y, v.z, w.x);
     O::load4(q, L::kBodyVelocity + 4, w.y, w.z, ve.x, ve.y);
     O::load4(q, L::kBodyVelocity + 8, ve.z, we.x, we.y, we.z);
-    const V3<T> vrel = (v + cross(w, rc)) - vw;
-    const V3<T> vrel_end = (ve + cross(we, rc)) - vw;
     T e_star, beta, mu_s, mu_r;
     O::load4(pc, 0, e_star, beta, mu_s, mu_r);
-    const HmConstants<T> hc{e_star, beta, mu_s, O::gather(pc, 4)};
+    const ContactLaw<T> law{e_star, beta, mu_s, mu_r, O::gather(pc, 4)};
+    const ContactKinematics<T> kin{n_,   overlap, radius, mass, (v + cross(w, rc)) - vw,
+                                   (ve + cross(we, rc)) - vw, O::gather(sc, 0)};
+    const T zero = O::splat(0.0);
+    ContactRotation<T, 1> rot;
+    rot.arm_m[0] = rc;
     V3<T> t = load3<O>(hist, 0);
-    const HmResult<T> f = hertz_mindlin_lanes<O>(hc, n_, overlap, radius, mass, vrel, vrel_end, t,
-                                                 a.dt_s, O::gather(rec, 13), a.clip_attractive);
-    const V3<T> tq = cross(rc, f.force_on_i_n);
-    const T roll = a.cdt ? mu_r * O::abs(f.normal_force_n) * O::gather(rec, 12) : O::splat(0.0);
-    alignas(64) double row[12][W];
-    const T* rows[12] = {&t.x, &t.y, &t.z, &f.force_on_i_n.x, &f.force_on_i_n.y,
-                         &f.force_on_i_n.z, &tq.x, &tq.y, &tq.z, &roll, &f.normal_force_n,
-                         &f.normal_stiffness_n_m};
-    for (int r = 0; r < 12; ++r) O::store(row[r], *rows[r]);
+    V3<T> m_k{zero, zero, zero};
+    if constexpr (RM == RollingModel::cdt) {
+      rot.cdt_lever_m[0] = O::gather(rec, 12);
+    } else if constexpr (epsd) {
+      V3<T> ws;
+      T inertia;
+      O::load4(spin, 0, ws.x, ws.y, ws.z, inertia);
+      rot.relative_spin = w - ws;
+      rot.relative_spin_end = we - ws;
+      rot.rolling_inertia_kg_m2 = inertia;
+      m_k = load3<O>(roll, 0);
+    }
+    const ContactResult<T, 1> f = contact_law<O, RM, 1>(law, kin, rot, t, m_k, settings);
+    constexpr int kRows = epsd ? 18 : 12;
+    alignas(64) double row[kRows][W];
+    const T* rows[18] = {&t.x,
+                         &t.y,
+                         &t.z,
+                         &f.force_on_i_n.x,
+                         &f.force_on_i_n.y,
+                         &f.force_on_i_n.z,
+                         &f.torque_n_m[0].x,
+                         &f.torque_n_m[0].y,
+                         &f.torque_n_m[0].z,
+                         &f.roll_capacity_n_m[0],
+                         &f.normal_force_n,
+                         &f.normal_stiffness_n_m,
+                         &m_k.x,
+                         &m_k.y,
+                         &m_k.z,
+                         &f.rolling_torque_n_m.x,
+                         &f.rolling_torque_n_m.y,
+                         &f.rolling_torque_n_m.z};
+    for (int r = 0; r < kRows; ++r) O::store(row[r], *rows[r]);
     for (int l = 0; l < used; ++l) {
       const std::size_t i = base + static_cast<std::size_t>(l);
       double* spring = a.tangential_m + 3 * in[i].pair;
-      WallContactOut& o = out[i];
+      WallContactOut& o = b.out[i];
       for (int c = 0; c < 3; ++c) {
         spring[c] = row[c][l];
         o.force_on_sphere_n[c] = row[3 + c][l];
@@ -247,7 +323,34 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallContactIn* in, std::size
       o.roll_capacity_n_m = row[9][l];
       o.normal_force_n = row[10][l];
       o.normal_stiffness_n_m = row[11][l];
+      if constexpr (epsd) {
+        double* rolling = a.rolling_m + 3 * in[i].pair;
+        for (int c = 0; c < 3; ++c) {
+          rolling[c] = row[12 + c][l];
+          o.rolling_torque_n_m[c] = row[15 + c][l];
+        }
+      }
     }
+  }
+}
+
+// The kernels of a lane type, the rolling model chosen once per batch.
+template <class O>
+void pair_batch(const PairBatchArgs& a, const std::uint32_t* pairs, const double* scale,
+                std::size_t n, PairBatchStats& stats) {
+  switch (a.rolling) {
+    case RollingModel::none: pair_batch_lanes<O, RollingModel::none>(a, pairs, scale, n, stats); break;
+    case RollingModel::cdt: pair_batch_lanes<O, RollingModel::cdt>(a, pairs, scale, n, stats); break;
+    case RollingModel::epsd: pair_batch_lanes<O, RollingModel::epsd>(a, pairs, scale, n, stats); break;
+  }
+}
+
+template <class O>
+void wall_batch(const WallBatchArgs& a, const WallBatch& b) {
+  switch (a.rolling) {
+    case RollingModel::none: wall_batch_lanes<O, RollingModel::none>(a, b); break;
+    case RollingModel::cdt: wall_batch_lanes<O, RollingModel::cdt>(a, b); break;
+    case RollingModel::epsd: wall_batch_lanes<O, RollingModel::epsd>(a, b); break;
   }
 }
 

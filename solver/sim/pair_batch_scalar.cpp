@@ -6,12 +6,11 @@ namespace seedcal {
 
 void pair_batch_scalar(const PairBatchArgs& args, const std::uint32_t* pairs, const double* scale,
                        std::size_t n, PairBatchStats& stats) {
-  lanes::pair_batch_lanes<lanes::ScalarOps>(args, pairs, scale, n, stats);
+  lanes::pair_batch<lanes::ScalarOps>(args, pairs, scale, n, stats);
 }
 
-void wall_batch_scalar(const WallBatchArgs& args, const WallContactIn* in, std::size_t n,
-                       WallContactOut* out) {
-  lanes::wall_batch_lanes<lanes::ScalarOps>(args, in, n, out);
+void wall_batch_scalar(const WallBatchArgs& args, const WallBatch& batch) {
+  lanes::wall_batch<lanes::ScalarOps>(args, batch);
 }
 
 bool pair_batch_avx2_usable() {

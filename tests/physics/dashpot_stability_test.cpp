@@ -13,7 +13,7 @@
 #include <limits>
 #include <tuple>
 
-#include "solver/contact/hertz_mindlin_lanes.hpp"
+#include "solver/contact/normal_damping.hpp"
 #include "solver/scenes/direct_shear.hpp"
 #include "tests/support/worlds.hpp"
 

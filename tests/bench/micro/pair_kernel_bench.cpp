@@ -94,7 +94,7 @@ void BM_PairBatch(benchmark::State& state) {
   args.sj = L.list.sj().data();
   args.tangential_m = L.list.tangential().data()->data();
   args.dt_s = 1e-6;
-  args.cdt = true;
+  args.rolling = RollingModel::cdt;
   const PairBatchFn fn = choose_pair_batch(lanes);
   PairBatchStats stats;
   for (auto _ : state) {
