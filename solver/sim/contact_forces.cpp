@@ -9,7 +9,8 @@
 #include "solver/contact/normal_damping.hpp"
 #include "solver/sim/contact_forces.hpp"
 #include "solver/sim/pair_batch.hpp"
-#include "solver/sim/simulation.hpp"
+#include "solver/sim/contact_pipeline.hpp"
+#include "solver/sim/thread_plan.hpp"
 #include "solver/sim/work_split.hpp"
 
 #ifdef _OPENMP
@@ -78,28 +79,30 @@ inline void set_group_damping_scale(int touching, double* scale) {
 
 }  // namespace
 
-struct ForceKernel {
-  // The serial set-up of a step's pass (contact_forces.hpp).
-  static void prepare(Simulation& s, ContactPass& p);
-  // One thread's shares of the pass.
-  template <NormalModel NM, RollingModel RM>
-  static void pass(Simulation& s, ContactPass& p, int t, int team);
-};
+namespace {
 
-void ForceKernel::prepare(Simulation& s, ContactPass& p) {
-  p.normal = s.options_.contact.normal;
-  p.rolling = s.options_.contact.rolling;
-  const std::size_t groups = s.pairs_.group_count();
+// One thread's shares of the pass.
+template <NormalModel NM, RollingModel RM>
+void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& plan, int t,
+                  int team_size);
+
+}  // namespace
+
+void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
+  ContactPass& p = pipe.pass;
+  p.normal = in.options.contact.normal;
+  p.rolling = in.options.contact.rolling;
+  const std::size_t groups = pipe.pairs.group_count();
   // Touching pairs per body pair: HMNR's damping scale, and the per-body contact counts when they
   // are tracked; otherwise not counted (a pass over every group of the list).
-  p.count_groups = p.normal == NormalModel::hmnr || s.options_.track_body_contacts;
-  if (p.count_groups) s.sphere_group_touch_.assign(groups, 0);
-  else s.sphere_group_touch_.clear();
-  s.wall_group_touch_.assign(s.wall_pairs_.group_count(), 0);
-  p.stats.assign(static_cast<std::size_t>(std::max(1, s.options_.threads)), ThreadStats{});
-  for (ThreadStats& ts : p.stats) ts.ratio_limit = s.options_.guards.max_overlap_fraction;
+  p.count_groups = p.normal == NormalModel::hmnr || in.options.track_body_contacts;
+  if (p.count_groups) pipe.sphere_group_touch.assign(groups, 0);
+  else pipe.sphere_group_touch.clear();
+  pipe.wall_group_touch.assign(pipe.wall_pairs.group_count(), 0);
+  p.stats.assign(static_cast<std::size_t>(std::max(1, in.options.threads)), ThreadStats{});
+  for (ThreadStats& ts : p.stats) ts.ratio_limit = in.options.guards.max_overlap_fraction;
 
-  const InteractionTable& table = s.table_;
+  const InteractionTable& table = in.table;
   const std::size_t nm = table.material_count();
   // The table is fixed for the simulation's life: its constants are packed once.
   if (p.batch_constants.size() != nm * nm) {
@@ -113,30 +116,30 @@ void ForceKernel::prepare(Simulation& s, ContactPass& p) {
       }
   }
   const bool epsd = p.rolling == RollingModel::epsd;
-  auto& tang = s.pairs_.tangential();
-  auto& wtang = s.wall_pairs_.tangential();
-  auto& roll = s.pairs_.rolling();
-  auto& wroll = s.wall_pairs_.rolling();
+  auto& tang = pipe.pairs.tangential();
+  auto& wtang = pipe.wall_pairs.tangential();
+  auto& roll = pipe.pairs.rolling();
+  auto& wroll = pipe.wall_pairs.rolling();
   PairBatchArgs& batch = p.batch;
-  batch.spheres = reinterpret_cast<const double*>(s.sphere_view_.data());
-  batch.sphere_body = s.spheres_.body.data();
-  batch.sphere_material = s.spheres_.material.data();
-  batch.bodies = reinterpret_cast<const double*>(s.body_view_.data());
+  batch.spheres = reinterpret_cast<const double*>(pipe.sphere_view.data());
+  batch.sphere_body = in.spheres.body.data();
+  batch.sphere_material = in.spheres.material.data();
+  batch.bodies = reinterpret_cast<const double*>(pipe.body_view.data());
   batch.pair_constants = p.batch_constants.data();
   batch.materials = nm;
-  batch.si = s.pairs_.si().data();
-  batch.sj = s.pairs_.sj().data();
+  batch.si = pipe.pairs.si().data();
+  batch.sj = pipe.pairs.sj().data();
   batch.tangential_m = tang.empty() ? nullptr : tang.data()->data();
   batch.rolling_m = epsd && !roll.empty() ? roll.data()->data() : nullptr;
-  batch.body_mass_kg = s.bodies_.mass_kg.data();
+  batch.body_mass_kg = in.bodies.mass_kg.data();
   batch.body_inertia_kg_m2 =
-      s.bodies_.principal_inertia.empty() ? nullptr : s.bodies_.principal_inertia.data()->data();
-  batch.dt_s = s.options_.dt_s;
-  batch.clip_attractive = s.options_.contact.clip_attractive;
+      in.bodies.principal_inertia.empty() ? nullptr : in.bodies.principal_inertia.data()->data();
+  batch.dt_s = in.options.dt_s;
+  batch.clip_attractive = in.options.contact.clip_attractive;
   batch.rolling = p.rolling;
-  batch.cdt_lever_from_centre_of_mass = s.options_.contact.cdt_lever_from_centre_of_mass;
-  batch.epsd_damping_ratio = s.options_.contact.epsd_damping_ratio;
-  p.batch_fn = choose_pair_batch(s.options_.simd_lanes);
+  batch.cdt_lever_from_centre_of_mass = in.options.contact.cdt_lever_from_centre_of_mass;
+  batch.epsd_damping_ratio = in.options.contact.epsd_damping_ratio;
+  p.batch_fn = choose_pair_batch(in.options.simd_lanes);
   WallBatchArgs& wall_args = p.wall_args;
   wall_args.bodies = batch.bodies;
   wall_args.pair_constants = batch.pair_constants;
@@ -146,27 +149,31 @@ void ForceKernel::prepare(Simulation& s, ContactPass& p) {
   wall_args.clip_attractive = batch.clip_attractive;
   wall_args.rolling = p.rolling;
   wall_args.epsd_damping_ratio = batch.epsd_damping_ratio;
-  p.wall_fn = choose_wall_batch(s.options_.simd_lanes);
+  p.wall_fn = choose_wall_batch(in.options.simd_lanes);
 }
 
-template <NormalModel NM, RollingModel RM>
-void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
-  constexpr bool epsd = RM == RollingModel::epsd;
-  const bool lever_com = s.options_.contact.cdt_lever_from_centre_of_mass;
-  BodyState& B = s.bodies_;
-  const SphereView* __restrict SV = s.sphere_view_.data();
-  const std::uint32_t* __restrict SB = s.spheres_.body.data();       // a sphere's body
-  const std::uint16_t* __restrict SM = s.spheres_.material.data();   // and material
-  const BodyView* __restrict BV = s.body_view_.data();
-  const std::size_t nw = s.walls_.size();
-  const std::size_t nm = s.table_.material_count();
+namespace {
 
-  auto& pairs = s.pairs_;
+template <NormalModel NM, RollingModel RM>
+void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& plan, int t,
+                  int team_size) {
+  ContactPass& p = pipe.pass;
+  constexpr bool epsd = RM == RollingModel::epsd;
+  const bool lever_com = in.options.contact.cdt_lever_from_centre_of_mass;
+  const BodyState& B = in.bodies;
+  const SphereView* __restrict SV = pipe.sphere_view.data();
+  const std::uint32_t* __restrict SB = in.spheres.body.data();       // a sphere's body
+  const std::uint16_t* __restrict SM = in.spheres.material.data();   // and material
+  const BodyView* __restrict BV = pipe.body_view.data();
+  const std::size_t nw = in.walls.size();
+  const std::size_t nm = in.table.material_count();
+
+  auto& pairs = pipe.pairs;
   const auto& gs = pairs.group_start();
   const std::size_t groups = pairs.group_count();
   const bool count_groups = p.count_groups;
 
-  auto& wl = s.wall_pairs_;
+  auto& wl = pipe.wall_pairs;
   const auto& wgs = wl.group_start();
   const auto& ws = wl.sphere();
   const auto& ww = wl.wall();
@@ -177,14 +184,14 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
   // Each thread takes the sphere pairs and then the wall pairs of one range of bodies, the ranges
   // cut where the work is equal (sim/work_split.hpp). One thread takes everything in list order.
   // Normally one share per thread; should the team be smaller, its threads take the rest in turn.
-  const std::vector<WorkShare>& shares = s.work_shares_;
+  const std::vector<WorkShare>& shares = plan.shares;
   const auto team = static_cast<std::size_t>(team_size);
   const auto ti = static_cast<std::size_t>(t);
   // A starts at zero: the force reduction clears it (Simulation::reduce_forces).
-  BodyAccumulator* __restrict A = s.thread_body_acc_[ti].data();
+  BodyAccumulator* __restrict A = plan.body_acc[ti].data();
   // Every write to A marks its body here (the reduction reads only marked accumulators).
-  std::uint8_t* __restrict touched = s.thread_body_touched_[ti].data();
-  WallAccumulator* __restrict WA = s.thread_wall_acc_[ti].data();
+  std::uint8_t* __restrict touched = plan.body_touched[ti].data();
+  WallAccumulator* __restrict WA = plan.wall_acc[ti].data();
   for (std::size_t w = 0; w < nw; ++w) {
     WA[w].force_n.setZero();
     WA[w].torque_n_m.setZero();
@@ -193,14 +200,14 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
   }
   // A private copy: the per-contact updates must not share a cache line between threads.
   ThreadStats st = p.stats[ti];
-  KernelScratch& sc = s.thread_scratch_[ti];
+  KernelScratch& sc = plan.scratch[ti];
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; the force reduction turns the
   // body's total into its rolling torque (contact/rolling_cdt_torque.hpp). Filled here and handed
   // over at the end: the vectors' own records sit side by side in thread_cdt_wall_, and a
   // push_back into them would write to a line the other threads use.
-  std::vector<Simulation::CdtWallShare> cdt_wall;
+  std::vector<CdtWallShare> cdt_wall;
   if constexpr (RM == RollingModel::cdt) {
-    cdt_wall.swap(s.thread_cdt_wall_[ti]);
+    cdt_wall.swap(plan.cdt_wall[ti]);
     cdt_wall.clear();
   }
 
@@ -224,7 +231,7 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
     double* __restrict TG = args.tangential_m;
     double* __restrict RG = epsd ? args.rolling_m : nullptr;
     std::uint8_t* __restrict LIVE = pairs.live().data();
-    int* __restrict GT = s.sphere_group_touch_.data();
+    int* __restrict GT = pipe.sphere_group_touch.data();
     for (std::size_t sh = ti; sh < shares.size(); sh += team)
     for (std::size_t g_begin = shares[sh].sphere_begin; g_begin < shares[sh].sphere_end;) {
       // The next chunk: whole groups up to about kChunkPairs pairs (at least one group).
@@ -310,7 +317,7 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
     for (std::size_t sh = ti; sh < shares.size(); sh += team)
     for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
-      const Wall& wall = s.walls_[ww[a]];
+      const Wall& wall = in.walls[ww[a]];
       int touching = 0;
       for (std::uint32_t k = a; k < e; ++k) {
         const SphereView& Si = SV[ws[k]];
@@ -354,17 +361,17 @@ void ForceKernel::pass(Simulation& s, ContactPass& p, int t, int team_size) {
       }
       if constexpr (NM == NormalModel::hmnr)
         set_group_damping_scale(touching, wscale.data() + (wscale.size() - static_cast<std::size_t>(touching)));
-      s.wall_group_touch_[g] = touching;
+      pipe.wall_group_touch[g] = touching;
       st.wall_contacts += static_cast<std::size_t>(touching);
       if (win.size() >= kWallBatch) flush();
     }
     flush();
   }
-  if constexpr (RM == RollingModel::cdt) cdt_wall.swap(s.thread_cdt_wall_[ti]);
+  if constexpr (RM == RollingModel::cdt) cdt_wall.swap(plan.cdt_wall[ti]);
   p.stats[ti] = st;
 }
 
-void prepare_contact_pass(Simulation& s, ContactPass& pass) { ForceKernel::prepare(s, pass); }
+}  // namespace
 
 ThreadStats finish_contact_pass(const ContactPass& pass) {
   ThreadStats total;
@@ -385,18 +392,19 @@ ThreadStats finish_contact_pass(const ContactPass& pass) {
 }
 
 // Dispatch: the model combination is chosen once per step, at run time, from the options.
-void run_contact_pass(Simulation& s, ContactPass& pass, int thread, int team) {
+void run_contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& plan, int thread,
+                      int team) {
   using N = NormalModel;
   using R = RollingModel;
-  const RollingModel rm = pass.rolling;
-  if (pass.normal == N::hertz_mindlin) {
-    if (rm == R::none) ForceKernel::pass<N::hertz_mindlin, R::none>(s, pass, thread, team);
-    else if (rm == R::cdt) ForceKernel::pass<N::hertz_mindlin, R::cdt>(s, pass, thread, team);
-    else ForceKernel::pass<N::hertz_mindlin, R::epsd>(s, pass, thread, team);
+  const RollingModel rm = pipe.pass.rolling;
+  if (pipe.pass.normal == N::hertz_mindlin) {
+    if (rm == R::none) contact_pass<N::hertz_mindlin, R::none>(in, pipe, plan, thread, team);
+    else if (rm == R::cdt) contact_pass<N::hertz_mindlin, R::cdt>(in, pipe, plan, thread, team);
+    else contact_pass<N::hertz_mindlin, R::epsd>(in, pipe, plan, thread, team);
   } else {
-    if (rm == R::none) ForceKernel::pass<N::hmnr, R::none>(s, pass, thread, team);
-    else if (rm == R::cdt) ForceKernel::pass<N::hmnr, R::cdt>(s, pass, thread, team);
-    else ForceKernel::pass<N::hmnr, R::epsd>(s, pass, thread, team);
+    if (rm == R::none) contact_pass<N::hmnr, R::none>(in, pipe, plan, thread, team);
+    else if (rm == R::cdt) contact_pass<N::hmnr, R::cdt>(in, pipe, plan, thread, team);
+    else contact_pass<N::hmnr, R::epsd>(in, pipe, plan, thread, team);
   }
 }
 

@@ -1,15 +1,30 @@
 #pragma once
-// Internal interface between the Simulation and its contact force kernel.
+// Internal interface between the Simulation and its contact force pass.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "solver/contact/contact_model.hpp"
+#include "solver/core/body_state.hpp"
+#include "solver/core/materials.hpp"
 #include "solver/sim/pair_batch.hpp"
+#include "solver/sim/simulation_options.hpp"
+#include "solver/walls/wall.hpp"
 
 namespace seedcal {
 
-class Simulation;
+struct ContactPipeline;
+struct ThreadPlan;
+
+// What the contact pass reads of the Simulation; its lists, views and history are in the
+// ContactPipeline, the threads' shares and buffers in the ThreadPlan.
+struct ContactInputs {
+  const SimulationOptions& options;
+  const InteractionTable& table;
+  const BodyState& bodies;
+  const SphereState& spheres;
+  const std::vector<Wall>& walls;
+};
 
 struct ThreadStats {
   std::size_t sphere_contacts = 0, wall_contacts = 0;
@@ -47,9 +62,11 @@ struct ContactPass {
   std::vector<ThreadStats> stats;                   // one per thread
 };
 
-void prepare_contact_pass(Simulation& s, ContactPass& pass);
+// The serial set-up of a step's pass, in `contacts.pass`.
+void prepare_contact_pass(const ContactInputs& in, ContactPipeline& contacts);
 // Thread `thread` of a team of `team`: its shares' sphere and wall contacts.
-void run_contact_pass(Simulation& s, ContactPass& pass, int thread, int team);
+void run_contact_pass(const ContactInputs& in, ContactPipeline& contacts, ThreadPlan& plan,
+                      int thread, int team);
 ThreadStats finish_contact_pass(const ContactPass& pass);
 
 }  // namespace seedcal

@@ -57,6 +57,25 @@ struct alignas(64) WallAccumulator {
   int contacts = 0;
 };
 
+// A body's record: half-step velocities and, for the dashpots, v~ = v + h F / m with the given
+// predicted angular velocity w~ (h = 0: the half-step ones; contact/contact_law.hpp); the centre of
+// mass.
+inline void fill_body_view(BodyView& bv, const Vec3& v, const Vec3& w, const Vec3& w_end,
+                           const Vec3& force, double inv_mass, double h, const Vec3& position) {
+  bv.velocity_m_s = v;
+  bv.angular_velocity = w;
+  bv.velocity_end_m_s = v + (h * inv_mass) * force;
+  bv.angular_velocity_end = w_end;
+  bv.inv_mass = inv_mass;
+  bv.position_m = position;
+}
+
+// A sphere's record.
+inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius) {
+  sv.position_m = centre;
+  sv.radius_m = radius;
+}
+
 static_assert(sizeof(SphereView) == 32);
 static_assert(sizeof(WallAccumulator) == 64);
 static_assert(sizeof(BodyView) == 128);

@@ -20,7 +20,7 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
   const bool prof = options_.profile;
   auto t0 = prof ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
   // Inside step() the views were refreshed by the body pass (or after a spatial sort).
-  if (!mid_step) refresh_views(0.0);
+  if (!mid_step) contacts_.refresh_views(bodies_, spheres_, 0.0, options_.threads);
   prepare_forces();
   // The torques computed now act over the second half of this step and the first half of the
   // next (velocity Verlet): over dt from mid-step, over dt/2 when the velocities are at the force
@@ -39,27 +39,27 @@ std::int64_t Simulation::compute_forces(bool mid_step) {
 
 void Simulation::prepare_forces() {
   update_work_shares();
-  prepare_contact_pass(*this, contact_pass_);
+  prepare_contact_pass(contact_inputs(), contacts_);
   if (options_.contact.rolling == RollingModel::cdt) cdt_torque_per_capacity_.resize(bodies_.size());
 }
 
 void Simulation::forces_in_region(int thread, int team, double h,
                                   std::chrono::steady_clock::time_point& t0,
                                   std::int64_t& first_bad) {
-  run_contact_pass(*this, contact_pass_, thread, team);
+  run_contact_pass(contact_inputs(), contacts_, threads_, thread, team);
 #pragma omp barrier
   if (thread == 0) lap(options_.profile, t0, profile_.contact_s);
   reduce_forces(thread, team, h, first_bad);
 }
 
 void Simulation::reduce_forces(int thread, int team, double h, std::int64_t& first_bad) {
-  const std::size_t nt = thread_body_acc_.size();
+  const std::size_t nt = threads_.body_acc.size();
   const Vec3 g = options_.gravity_m_s2;
   const bool cdt = options_.contact.rolling == RollingModel::cdt;
   const bool cdt_limit = options_.contact.cdt_stop_limit;
   // Raw pointers, so that the stores do not make the compiler reload the state.
-  BodyAccumulator* const* __restrict acc_ptr = thread_acc_ptr_.data();
-  std::uint8_t* const* __restrict touched_ptr = thread_touched_ptr_.data();
+  BodyAccumulator* const* __restrict acc_ptr = threads_.acc_ptr.data();
+  std::uint8_t* const* __restrict touched_ptr = threads_.touched_ptr.data();
   const double* __restrict mass = bodies_.mass_kg.data();
   const Vec3* __restrict mom = bodies_.angular_momentum.data();
   const Vec3* __restrict omega = bodies_.angular_velocity.data();
@@ -69,9 +69,9 @@ void Simulation::reduce_forces(int thread, int team, double h, std::int64_t& fir
   // Sum the threads' shares in thread order and settle the CDT torque; the NaN guard rides along
   // (lowest bad body reported). The bodies are those whose contacts this thread computed
   // (sim/work_split.hpp): the same sums in the same order whichever thread adds them.
-  for (std::size_t sh = static_cast<std::size_t>(thread); sh < work_shares_.size();
+  for (std::size_t sh = static_cast<std::size_t>(thread); sh < threads_.shares.size();
        sh += static_cast<std::size_t>(team))
-  for (std::size_t b = work_shares_[sh].body_begin; b < work_shares_[sh].body_end; ++b) {
+  for (std::size_t b = threads_.shares[sh].body_begin; b < threads_.shares[sh].body_end; ++b) {
     Vec3 f = mass[b] * g, tq = Vec3::Zero();
     double capacity = 0.0;
     for (std::size_t t = 0; t < nt; ++t) {
@@ -105,16 +105,16 @@ void Simulation::reduce_forces(int thread, int team, double h, std::int64_t& fir
   // are now known, so no other thread need be waited for.
   if (cdt) {
     const auto t = static_cast<std::size_t>(thread);
-    WallAccumulator* wall_acc = thread_wall_acc_[t].data();
-    for (const CdtWallShare& share : thread_cdt_wall_[t])
+    WallAccumulator* wall_acc = threads_.wall_acc[t].data();
+    for (const CdtWallShare& share : threads_.cdt_wall[t])
       wall_acc[share.wall].torque_n_m -= share.capacity_n_m * cdt_u[share.body];
   }
 }
 
 std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
-  const ThreadStats total = finish_contact_pass(contact_pass_);
+  const ThreadStats total = finish_contact_pass(contacts_.pass);
   const std::size_t nb = bodies_.size();
-  const std::size_t nt = thread_body_acc_.size();
+  const std::size_t nt = threads_.body_acc.size();
   const double dt = options_.dt_s;
   if (mid_step) {
     kick_pending_ = true;
@@ -125,7 +125,7 @@ std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
     double k = 0.0;
     int c = 0;
     for (std::size_t t = 0; t < nt; ++t) {
-      const WallAccumulator& acc = thread_wall_acc_[t][w];
+      const WallAccumulator& acc = threads_.wall_acc[t][w];
       f += acc.force_n;
       tq += acc.torque_n_m;
       k += acc.contact_stiffness_n_m;
@@ -142,17 +142,7 @@ std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
   stats_.max_overlap_m = total.max_overlap;
   stats_.max_normal_force_n = total.max_fn;
   if (options_.track_body_contacts) {
-    body_contacts_.assign(nb, 0);
-    const auto& gs = pairs_.group_start();
-    for (std::size_t k = 0; k < sphere_group_touch_.size(); ++k) {
-      if (sphere_group_touch_[k] == 0) continue;
-      const std::uint32_t p = gs[k];
-      body_contacts_[spheres_.body[pairs_.si()[p]]] += sphere_group_touch_[k];
-      body_contacts_[spheres_.body[pairs_.sj()[p]]] += sphere_group_touch_[k];
-    }
-    const auto& wgs = wall_pairs_.group_start();
-    for (std::size_t k = 0; k < wall_group_touch_.size(); ++k)
-      body_contacts_[spheres_.body[wall_pairs_.sphere()[wgs[k]]]] += wall_group_touch_[k];
+    contacts_.count_body_contacts(spheres_, nb, body_contacts_);
     for (int c : body_contacts_) stats_.max_body_contacts = std::max(stats_.max_body_contacts, c);
   }
   if (total.worst_ratio > options_.guards.max_overlap_fraction && failure_.status == RunStatus::ok) {

@@ -12,7 +12,7 @@
 #include <omp.h>
 #endif
 
-#include "solver/integrate/free_rotation.hpp"
+#include "solver/integrate/velocity_verlet.hpp"
 #include "solver/sim/contact_forces.hpp"
 #include "solver/sim/phase_clock.hpp"
 #include "solver/sim/work_split.hpp"
@@ -42,18 +42,9 @@ BodyDef sphere_body(double radius_m, double density_kg_m3, std::uint16_t materia
 
 Simulation::Simulation(InteractionTable table, SimulationOptions options)
     : table_(std::move(table)), options_(options), rng_(options.seed) {
-  if (!(options_.dt_s > 0.0)) throw std::invalid_argument("Simulation: dt_s must be > 0");
-  if (options_.threads < 1) options_.threads = 1;
-  if (options_.observer.on_frame) {
-    if (!(options_.observer.interval_s > 0.0))
-      throw std::invalid_argument("Simulation: a frame observer needs interval_s > 0");
-    next_frame_s_ = 0.0;
-  }
-  if (options_.observer.on_progress) {
-    if (!(options_.observer.progress_interval_s > 0.0))
-      throw std::invalid_argument("Simulation: a progress observer needs progress_interval_s > 0");
-    next_progress_s_ = options_.observer.progress_interval_s;
-  }
+  validate_options(options_);
+  if (options_.observer.on_frame) next_frame_s_ = 0.0;
+  if (options_.observer.on_progress) next_progress_s_ = options_.observer.progress_interval_s;
   bodies_.first_sphere.push_back(0);
 }
 
@@ -127,7 +118,7 @@ void Simulation::require_interactions(std::uint16_t material, bool wall, const s
 }
 
 void Simulation::set_time_step(double dt_s) {
-  if (!(dt_s > 0.0)) throw std::invalid_argument("set_time_step: dt_s must be > 0");
+  require_time_step(dt_s, "set_time_step");
   options_.dt_s = dt_s;
 }
 
@@ -151,145 +142,8 @@ double Simulation::rayleigh_time_step_s() const {
   return dt;
 }
 
-namespace {
-// Sphere i of body b at the body's pose (world centre): x_b + R(q) offset_i. The rotation matrix
-// is formed once per body (sphere_rotation) and applied to each of its spheres: for a clump that
-// is 15 flops per sphere against about 30 for rotating by the quaternion itself.
-inline Mat3 sphere_rotation(const Quat& q) { return q.toRotationMatrix(); }
-inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const Vec3& offset) {
-  return offset.isZero(0.0) ? body_position : Vec3(body_position + rotation * offset);
-}
-
-// Body b's translation and momentum for a step: the last step's second half kick when pending
-// (the same operations as finish_kick()), then velocity Verlet's first half: kick with the same
-// forces, drift. Stores and returns the new momentum; a non-finite position, velocity or momentum
-// lowers `bad` to b.
-[[gnu::always_inline]] inline Vec3 kick_drift(
-    std::size_t b, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
-    Vec3* __restrict vel, Vec3* __restrict mom, const Vec3* __restrict force,
-    const Vec3* __restrict torque, const double* __restrict inv_mass, std::int64_t& bad) {
-  Vec3 v_full = vel[b], L_full = mom[b];
-  if (kick) {
-    v_full = v_full + (hk * inv_mass[b]) * force[b];
-    L_full = L_full + hk * torque[b];
-  }
-  const Vec3 v = v_full + (h * inv_mass[b]) * force[b];
-  const Vec3 L = L_full + h * torque[b];
-  const Vec3 p = pos[b] + dt * v;
-  if (!std::isfinite(p.sum() + v.sum() + L.sum())) bad = std::min(bad, static_cast<std::int64_t>(b));
-  vel[b] = v;
-  mom[b] = L;
-  pos[b] = p;
-  return L;
-}
-
-// kick_drift(), then the rotation over the step.
-[[gnu::always_inline]] inline void kick_drift_rotate(
-    std::size_t b, bool iso, bool kick, double hk, double h, double dt, Vec3* __restrict pos,
-    Quat* __restrict rot, Vec3* __restrict vel, Vec3* __restrict mom, const Vec3* __restrict force,
-    const Vec3* __restrict torque, const double* __restrict inv_mass,
-    const Vec3* __restrict inv_inertia, std::int64_t& bad) {
-  const Vec3 L = kick_drift(b, kick, hk, h, dt, pos, vel, mom, force, torque, inv_mass, bad);
-  Quat q = rot[b];
-  free_rotation_step(q, L, inv_inertia[b], iso, dt);
-  rot[b] = q;
-}
-
-// The contact kernel's record of a body (sim/contact_view.hpp): half-step velocities and, for the
-// dashpots, v~ = v + h F / m with the given predicted angular velocity w~; the centre of mass.
-inline void fill_body_view(BodyView& bv, const Vec3& v, const Vec3& w, const Vec3& w_end,
-                           const Vec3& force, double inv_mass, double h, const Vec3& position) {
-  bv.velocity_m_s = v;
-  bv.angular_velocity = w;
-  bv.velocity_end_m_s = v + (h * inv_mass) * force;
-  bv.angular_velocity_end = w_end;
-  bv.inv_mass = inv_mass;
-  bv.position_m = position;
-}
-
-// The contact kernel's record of a sphere.
-inline void fill_sphere_view(SphereView& sv, const Vec3& centre, double radius) {
-  sv.position_m = centre;
-  sv.radius_m = radius;
-}
-
-// A lone sphere at its body's centre of mass: kick_drift(), views and skin check as for any body,
-// the same operations in the same order, without the orientation (which moves no sphere of it) and
-// the offset: 64 bytes a body and step fewer to stream through a bed larger than the cache, with
-// the same bits (docs/results/solver_speed.md).
-[[gnu::always_inline]] inline void lone_sphere_step(
-    std::size_t b, bool kick, double hk, double h, double hp, double dt, Vec3* __restrict pos,
-    Vec3* __restrict vel, Vec3* __restrict mom, Vec3* __restrict omega,
-    const Vec3* __restrict force, const Vec3* __restrict torque,
-    const double* __restrict inv_mass, const Vec3* __restrict inv_inertia, std::uint32_t i,
-    const double* __restrict radius, Vec3* __restrict centre, BodyView* __restrict bview, SphereView* __restrict sview,
-    const Vec3* __restrict ref, double& max_moved_sq, std::int64_t& bad) {
-  const Vec3 L = kick_drift(b, kick, hk, h, dt, pos, vel, mom, force, torque, inv_mass, bad);
-  const Vec3 v = vel[b], p = pos[b], T = torque[b];
-  const double ii = inv_inertia[b].x();
-  const Vec3 w = L * ii;
-  omega[b] = w;
-  fill_body_view(bview[b], v, w, Vec3(L + hp * T) * ii, force[b], inv_mass[b], hp, p);
-  centre[i] = p;
-  fill_sphere_view(sview[i], p, radius[i]);
-  if (ref) max_moved_sq = std::max(max_moved_sq, (p - ref[i]).squaredNorm());
-}
-
-}  // namespace
-
-void Simulation::update_sphere_positions() {
-  const std::size_t n = spheres_.size();
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t b = spheres_.body[i];
-    spheres_.position_m[i] = sphere_centre(
-        bodies_.position_m[b], sphere_rotation(bodies_.orientation[b]), spheres_.offset_body_m[i]);
-  }
-}
-
-void Simulation::refresh_views(double h) {
-  const std::size_t nb = bodies_.size(), ns = spheres_.size();
-  body_view_.resize(nb);
-  sphere_view_.resize(ns);
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
-  for (std::size_t b = 0; b < nb; ++b) {
-    const Vec3 w_end =
-        h == 0.0 ? bodies_.angular_velocity[b]
-                 : angular_velocity_from_momentum(
-                       bodies_.orientation[b], bodies_.inv_inertia[b],
-                       Vec3(bodies_.angular_momentum[b] + h * bodies_.torque_n_m[b]),
-                       bodies_.isotropic[b] != 0);
-    fill_body_view(body_view_[b], bodies_.velocity_m_s[b], bodies_.angular_velocity[b], w_end,
-                   bodies_.force_n[b], bodies_.inv_mass[b], h, bodies_.position_m[b]);
-    for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
-      fill_sphere_view(sphere_view_[i], spheres_.position_m[i], spheres_.radius_m[i]);
-  }
-}
-
-void Simulation::size_thread_buffers() {
-  const auto t = static_cast<std::size_t>(options_.threads);
-  const std::size_t nb = bodies_.size(), nw = walls_.size();
-  // The accumulators are zero between steps: the force reduction clears what it reads
-  // (compute_forces), so new ones start at zero too.
-  BodyAccumulator zero;
-  zero.force_n.setZero();
-  zero.torque_n_m.setZero();
-  zero.roll_capacity_n_m = 0.0;
-  thread_body_acc_.resize(t);
-  for (auto& acc : thread_body_acc_)
-    if (acc.size() < nb) acc.resize(nb, zero);
-  thread_body_touched_.resize(t);
-  for (auto& touched : thread_body_touched_)
-    if (touched.size() < nb) touched.resize(nb, 0);
-  thread_wall_acc_.assign(t, std::vector<WallAccumulator>(nw));
-  thread_acc_ptr_.resize(t);
-  thread_touched_ptr_.resize(t);
-  for (std::size_t k = 0; k < t; ++k) {
-    thread_acc_ptr_[k] = thread_body_acc_[k].data();
-    thread_touched_ptr_[k] = thread_body_touched_[k].data();
-  }
-  thread_cdt_wall_.resize(t);
-  thread_scratch_.resize(t);
+ContactInputs Simulation::contact_inputs() const {
+  return {options_, table_, bodies_, spheres_, walls_};
 }
 
 void Simulation::ensure_ready() {
@@ -297,9 +151,9 @@ void Simulation::ensure_ready() {
   settle();
   double r_max = 0.0;
   for (double r : spheres_.radius_m) r_max = std::max(r_max, r);
-  skin_m_ = options_.skin_m > 0.0 ? options_.skin_m : 0.2 * r_max;
-  size_thread_buffers();
-  update_sphere_positions();
+  contacts_.skin_m = options_.skin_m > 0.0 ? options_.skin_m : 0.2 * r_max;
+  threads_.size(options_.threads, bodies_.size(), walls_.size());
+  place_spheres(bodies_, spheres_, options_.threads);
   rebuild_lists();
   ready_ = true;
   compute_forces(false);
@@ -311,132 +165,19 @@ void Simulation::ensure_ready() {
 
 void Simulation::rebuild_lists() {
   // Rolling-spring history exists only for EPSD: no rolling history when it is not needed.
-  const bool rolling_history = options_.contact.rolling == RollingModel::epsd;
-  pairs_.build(spheres_, skin_m_, rolling_history, options_.threads);
-  wall_pairs_.build(spheres_, walls_, skin_m_, rolling_history);
-  wall_pose_at_build_.clear();
-  for (const Wall& w : walls_) wall_pose_at_build_.push_back(w.pose);
-  ++lists_version_;
+  contacts_.rebuild(spheres_, walls_, options_.contact.rolling == RollingModel::epsd,
+                    options_.threads);
 }
 
-// Spheres and walls each may use half the skin before a pair can be missed; a wall's share is
-// bounded by how far its surface moved since the last build.
-bool Simulation::walls_moved_beyond_skin() const {
-  for (std::size_t w = 0; w < walls_.size(); ++w) {
-    if (!walls_[w].motion) continue;
-    if (surface_displacement_m(*walls_[w].shape, wall_pose_at_build_[w], walls_[w].pose) >
-        0.5 * skin_m_)
-      return true;
-  }
-  return false;
+void Simulation::update_work_shares() {
+  threads_.update_shares(contacts_.lists_version, options_.threads, bodies_, spheres_,
+                         contacts_.pairs, contacts_.wall_pairs);
 }
 
 void Simulation::finish_kick() {
   if (!kick_pending_) return;
-  const std::size_t nb = bodies_.size();
-  const double hk = 0.5 * kick_dt_s_;
-#pragma omp parallel for schedule(static) num_threads(options_.threads) if (options_.threads > 1)
-  for (std::size_t b = 0; b < nb; ++b) {
-    const Vec3 L = bodies_.angular_momentum[b] + hk * bodies_.torque_n_m[b];
-    bodies_.velocity_m_s[b] += (hk * bodies_.inv_mass[b]) * bodies_.force_n[b];
-    bodies_.angular_momentum[b] = L;
-    bodies_.angular_velocity[b] = angular_velocity_from_momentum(
-        bodies_.orientation[b], bodies_.inv_inertia[b], L, bodies_.isotropic[b] != 0);
-  }
+  finish_half_kick(bodies_, 0.5 * kick_dt_s_, options_.threads);
   kick_pending_ = false;
-}
-
-void Simulation::move_bodies(std::size_t b_begin, std::size_t b_end, double dt, bool kick,
-                             double hk, const Vec3* ref, double& max_moved_sq,
-                             std::int64_t& bad) {
-  // Dashpot velocities (contact/hertz_mindlin.hpp): the half-step ones (hp = 0), or with
-  // ContactOptions::dashpot_predicted v~_{n+1} = v_{n+1/2} + dt/2 F_n / m and
-  // L~_{n+1} = L_{n+1/2} + dt/2 T_n (Groot & Warren 1997, eq. 17 with lambda = 1), with F_n, T_n
-  // the forces of the previous step still held by the bodies.
-  const double h = 0.5 * dt;
-  const double hp = options_.contact.dashpot_predicted ? h : 0.0;
-  // Raw pointers: the stores to the views must not make the compiler reload the state.
-  Vec3* __restrict pos = bodies_.position_m.data();
-  Quat* __restrict rot = bodies_.orientation.data();
-  Vec3* __restrict vel = bodies_.velocity_m_s.data();
-  Vec3* __restrict mom = bodies_.angular_momentum.data();
-  Vec3* __restrict omega = bodies_.angular_velocity.data();
-  const Vec3* __restrict force = bodies_.force_n.data();
-  const Vec3* __restrict torque = bodies_.torque_n_m.data();
-  const double* __restrict inv_mass = bodies_.inv_mass.data();
-  const Vec3* __restrict inv_inertia = bodies_.inv_inertia.data();
-  const std::uint8_t* __restrict iso_flag = bodies_.isotropic.data();
-  const std::uint32_t* __restrict first = bodies_.first_sphere.data();
-  const Vec3* __restrict offset = spheres_.offset_body_m.data();
-  const double* __restrict radius = spheres_.radius_m.data();
-  Vec3* __restrict centre = spheres_.position_m.data();
-  BodyView* __restrict bview = body_view_.data();
-  SphereView* __restrict sview = sphere_view_.data();
-  // Blocks of bodies, each in two passes: the kick, drift and rotation of the block's clumps,
-  // then the views and spheres of all its bodies (a sphere's kick, drift and rotation there). A
-  // clump's rotation is a chain of dependent operations (integrate/free_rotation.hpp); in a short
-  // first loop the processor overlaps the chains of several clumps, which one loop doing each
-  // body's rotation and spheres together would not let it do (docs/results/solver_speed.md). A
-  // block stays in the first-level cache between the passes; spheres stay in one pass, where a
-  // second costs more than it saves.
-  constexpr std::size_t kBlock = 32;
-  for (std::size_t b_block = b_begin; b_block < b_end; b_block += kBlock) {
-    const std::size_t block_end = std::min(b_end, b_block + kBlock);
-    for (std::size_t b = b_block; b < block_end; ++b)
-      if (iso_flag[b] == 0)
-        kick_drift_rotate(b, false, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
-                          inv_inertia, bad);
-    for (std::size_t b = b_block; b < block_end; ++b) {
-      if (iso_flag[b] == 2) {
-        lone_sphere_step(b, kick, hk, h, hp, dt, pos, vel, mom, omega, force, torque, inv_mass,
-                         inv_inertia, first[b], radius, centre, bview, sview, ref,
-                         max_moved_sq, bad);
-        continue;
-      }
-      const bool iso = iso_flag[b] != 0;
-      if (iso)  // a short rotation: no chain to overlap
-        kick_drift_rotate(b, true, kick, hk, h, dt, pos, rot, vel, mom, force, torque, inv_mass,
-                          inv_inertia, bad);
-      const Vec3 v = vel[b], L = mom[b], p = pos[b];
-      const Quat q = rot[b];
-      const Vec3 w = angular_velocity_from_momentum(q, inv_inertia[b], L, iso);
-      omega[b] = w;
-      fill_body_view(bview[b], v, w,
-                     angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + hp * torque[b]), iso),
-                     force[b], inv_mass[b], hp, p);
-      // The rotation matrix only when some sphere is off the centre of mass (not for a lone
-      // sphere).
-      Mat3 rotation;
-      bool rotated = false;
-      for (std::uint32_t i = first[b]; i < first[b + 1]; ++i) {
-        if (!rotated && !offset[i].isZero(0.0)) {
-          rotation = sphere_rotation(q);
-          rotated = true;
-        }
-        const Vec3 c = rotated ? sphere_centre(p, rotation, offset[i]) : p;
-        centre[i] = c;
-        fill_sphere_view(sview[i], c, radius[i]);
-        if (ref) max_moved_sq = std::max(max_moved_sq, (c - ref[i]).squaredNorm());
-      }
-    }
-  }
-}
-
-void Simulation::update_work_shares() {
-  if (shares_version_ == lists_version_) return;
-  const auto nt = static_cast<std::size_t>(std::max(1, options_.threads));
-  const std::size_t nb = bodies_.size();
-  const std::uint32_t* body_of_sphere = spheres_.body.data();
-  const auto& gs = pairs_.group_start();
-  const auto& si = pairs_.si();
-  const auto& wgs = wall_pairs_.group_start();
-  const auto& ws = wall_pairs_.sphere();
-  work_shares_ = split_contact_work(
-      {gs, pairs_.group_count(), [&](std::size_t g) { return body_of_sphere[si[gs[g]]]; }},
-      {wgs, wall_pairs_.group_count(), [&](std::size_t g) { return body_of_sphere[ws[wgs[g]]]; }},
-      nb, nt);
-  split_bodies_by_spheres(bodies_.first_sphere, nb, work_shares_);
-  shares_version_ = lists_version_;
 }
 
 // One step: the first half of velocity Verlet for every body (with the last step's pending
@@ -462,23 +203,27 @@ bool Simulation::step() {
   const std::size_t nb = bodies_.size(), ns = spheres_.size();
   const int nt = std::max(1, options_.threads);
   update_work_shares();
-  const std::vector<WorkShare>& shares = work_shares_;
+  const std::vector<WorkShare>& shares = threads_.shares;
   const bool sort_due = options_.sort_interval_steps > 0 &&
                         (step_ + 1) % options_.sort_interval_steps == 0 && nb >= 512;
   // The previous step's second half kick, when pending, with that step's dt (finish_kick()).
-  const bool kick = kick_pending_;
-  const double hk = 0.5 * kick_dt_s_;
+  VerletPass pass;
+  pass.dt_s = dt;
+  pass.kick = kick_pending_;
+  pass.kick_half_s = 0.5 * kick_dt_s_;
+  pass.predict_s = options_.contact.dashpot_predicted ? 0.5 * dt : 0.0;
   kick_pending_ = false;
-  body_view_.resize(nb);
-  sphere_view_.resize(ns);
+  contacts_.body_view.resize(nb);
+  contacts_.sphere_view.resize(ns);
+  BodyView* body_view = contacts_.body_view.data();
+  SphereView* sphere_view = contacts_.sphere_view.data();
   // Skin check against the centres at the last neighbour build (none after a renumbering).
-  const std::vector<Vec3>& built = pairs_.built_at();
+  const std::vector<Vec3>& built = contacts_.pairs.built_at();
   const Vec3* ref = built.size() == ns ? built.data() : nullptr;
   // Valid for this step's forces unless the lists are rebuilt (then compute_forces() sets them up
   // again).
   prepare_forces();
-  step_moved_sq_.assign(static_cast<std::size_t>(nt), 0.0);
-  step_bad_.assign(static_cast<std::size_t>(nt), std::numeric_limits<std::int64_t>::max());
+  threads_.start_step(nt);
   bool walls_moved = false, rebuild = false;
   std::int64_t force_bad = std::numeric_limits<std::int64_t>::max();
 #pragma omp parallel num_threads(nt) if (nt > 1) reduction(min : force_bad)
@@ -488,21 +233,23 @@ bool Simulation::step() {
     std::int64_t bad = std::numeric_limits<std::int64_t>::max();
     for (std::size_t sh = static_cast<std::size_t>(t); sh < shares.size();
          sh += static_cast<std::size_t>(team))
-      move_bodies(shares[sh].move_begin, shares[sh].move_end, dt, kick, hk, ref, moved_sq, bad);
-    step_moved_sq_[static_cast<std::size_t>(t)] = moved_sq;
-    step_bad_[static_cast<std::size_t>(t)] = bad;
+      move_bodies(bodies_, spheres_, body_view, sphere_view, shares[sh].move_begin,
+                  shares[sh].move_end, pass, ref, moved_sq, bad);
+    threads_.moved_sq[static_cast<std::size_t>(t)] = moved_sq;
+    threads_.bad[static_cast<std::size_t>(t)] = bad;
     if (t == 0) {
       for (Wall& w : walls_)
         if (w.motion) w.motion->advance(w, time_s_, dt);
       time_s_ += dt;
       ++step_;
-      walls_moved = walls_moved_beyond_skin();
+      walls_moved = contacts_.walls_moved_beyond_skin(walls_);
     }
 #pragma omp barrier
     // Every thread reaches the same decision from the same values.
     double moved_all_sq = 0.0;
-    for (double m : step_moved_sq_) moved_all_sq = std::max(moved_all_sq, m);
-    const bool rebuild_now = ref == nullptr || moved_all_sq > pairs_.rebuild_distance_sq();
+    for (double m : threads_.moved_sq) moved_all_sq = std::max(moved_all_sq, m);
+    const bool rebuild_now =
+        ref == nullptr || moved_all_sq > contacts_.pairs.rebuild_distance_sq();
     if (t == 0) {
       rebuild = rebuild_now;
       lap(prof, t0, profile_.integrate_s);
@@ -512,10 +259,10 @@ bool Simulation::step() {
   std::int64_t first_bad = -1;
   if (rebuild || walls_moved || sort_due) {
     if (sort_due && sort_spatially()) {
-      refresh_views(options_.contact.dashpot_predicted ? 0.5 * dt : 0.0);
+      contacts_.refresh_views(bodies_, spheres_, pass.predict_s, options_.threads);
       rebuild = false;  // the renumbering rebuilt the lists
     }
-    if (rebuild || walls_moved_beyond_skin()) rebuild_lists();
+    if (rebuild || contacts_.walls_moved_beyond_skin(walls_)) rebuild_lists();
     lap(prof, t0, profile_.neighbour_s);
     // Forces at t_{n+1}; their second half kick is left pending (finish_kick()).
     first_bad = compute_forces(true);
@@ -524,7 +271,7 @@ bool Simulation::step() {
     lap(prof, t0, profile_.reduce_s);
   }
   std::int64_t moved_bad = std::numeric_limits<std::int64_t>::max();
-  for (std::int64_t b : step_bad_) moved_bad = std::min(moved_bad, b);
+  for (std::int64_t b : threads_.bad) moved_bad = std::min(moved_bad, b);
   if (moved_bad != std::numeric_limits<std::int64_t>::max() &&
       (first_bad < 0 || moved_bad < first_bad))
     first_bad = moved_bad;

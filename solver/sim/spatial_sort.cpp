@@ -143,9 +143,9 @@ void Simulation::reorder_bodies(const std::vector<std::uint32_t>& old_of_new) {
   std::fill(index_of_id_.begin(), index_of_id_.end(), kGone);
   for (std::size_t b = 0; b < nb; ++b) index_of_id_[bodies_.id[b]] = static_cast<std::uint32_t>(b);
   if (ready_) {
-    pairs_.renumber(sphere_new_of_old, spheres_);
-    wall_pairs_.renumber(sphere_new_of_old, spheres_);
-    size_thread_buffers();
+    contacts_.pairs.renumber(sphere_new_of_old, spheres_);
+    contacts_.wall_pairs.renumber(sphere_new_of_old, spheres_);
+    threads_.size(options_.threads, bodies_.size(), walls_.size());
     rebuild_lists();
   }
 }

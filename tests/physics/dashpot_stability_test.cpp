@@ -1,4 +1,4 @@
-// Stability of the contact dashpots in many-contact packings (contact/hertz_mindlin.hpp, "Which
+// Stability of the contact dashpots in many-contact packings (contact/contact_law.hpp, "Which
 // velocity each term uses"; docs/stability.md, "Dashpot velocity").
 //
 // A body whose contacts damp it at the rate g is stable under the half-step dashpot velocity for

@@ -58,7 +58,7 @@ TEST(Determinism, OneAndTwoThreadsAgree) {
 
 // The sphere-sphere and sphere-wall kernels on eight (AVX-512F) and four (AVX2) lanes give the
 // same bits as on one lane (sim/pair_batch.hpp): settling, sliding and resting contacts, with and
-// without HMNR and CDT. A width the CPU does not run is skipped.
+// without HMNR, with CDT and EPSD. A width the CPU does not run is skipped.
 TEST(Determinism, WideAndOneLaneKernelsAreBitIdentical) {
   struct Case {
     NormalModel normal;
@@ -71,6 +71,7 @@ TEST(Determinism, WideAndOneLaneKernelsAreBitIdentical) {
     ++widths_run;
     for (const Case c : {Case{NormalModel::hertz_mindlin, RollingModel::cdt, 1},
                          Case{NormalModel::hmnr, RollingModel::none, 1},
+                         Case{NormalModel::hmnr, RollingModel::epsd, 1},
                          Case{NormalModel::hertz_mindlin, RollingModel::cdt, 2}}) {
       const auto a = run_bed(c.threads, 7, 3000, lanes, c.normal, c.rolling);
       const auto b = run_bed(c.threads, 7, 3000, 1, c.normal, c.rolling);

@@ -1,4 +1,4 @@
-// The multi-contact correction (solver/contact/hmnr.hpp): a clump that lands on a plate at n
+// The multi-contact correction (solver/contact/normal_damping.hpp): a clump that lands on a plate at n
 // sphere-level points at once rebounds with the set restitution under HMNR, and lower under plain
 // Hertz-Mindlin, whose n parallel dampers raise the damping ratio by sqrt(n).
 #include <gtest/gtest.h>

@@ -114,7 +114,7 @@ TEST(StabilitySweep, EveryOtherParameterAtItsExtremesCompletesAtDefaultStep) {
 
 TEST(StabilitySweep, ClumpOf2000SpheresReboundsWithTheSetRestitution) {
   // A 10 x 10 x 20 lattice block lands on a flat face: 100 or 200 sphere contacts at once. With
-  // HMNR the pair keeps the set restitution (hmnr.hpp).
+  // HMNR the pair keeps the set restitution (contact/normal_damping.hpp).
   Corner c = seed("2000 spheres");
   c.shape = Shape::spheres2000;
   const Outcome o = impact(c, {});
