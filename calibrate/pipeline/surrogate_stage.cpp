@@ -26,6 +26,7 @@
 #include "doe/rsm/surface_optimum.hpp"
 #include "doe/rsm/level_curve.hpp"
 #include "doe/surrogate/gaussian_process.hpp"
+#include "doe/surrogate/surrogate_choice.hpp"
 #include "store/errors.hpp"
 
 namespace seedcal {
@@ -85,57 +86,39 @@ struct TargetFit {
   nlohmann::json report;
 };
 
-// `noise_var_floor`: the screening's lower bound of the run-to-run noise variance (0: none).
+// `noise_var_floor`: the screening's lower bound of the run-to-run noise variance (0: none). The
+// choice between the quadratic and the GP is doe::choose_surrogate's; this records both fits.
 TargetFit fit_target(const StudyConfig& s, const Eigen::MatrixXd& U, const Eigen::VectorXd& y,
                      const std::vector<std::string>& names, double noise_var_floor) {
   TargetFit out;
   nlohmann::json rep = {{"points", y.size()}};
-  const double inf = std::numeric_limits<double>::infinity();
-  double quad_cv = inf, gp_cv = inf;
-  std::shared_ptr<doe::QuadraticSurface> quad;
-  std::shared_ptr<doe::GaussianProcess> gp;
-  const auto terms = doe::model_terms(doe::ModelKind::quadratic, names);
-  if (s.surrogate.model != "gp" && y.size() > static_cast<Eigen::Index>(terms.size())) {
-    try {
-      const auto a = doe::analyze_regression(U, y, terms);
-      quad = std::make_shared<doe::QuadraticSurface>(doe::quadratic_surface(terms, a.fit.coefficients));
-      quad_cv = std::isfinite(a.press) ? std::sqrt(a.press / static_cast<double>(y.size())) : inf;
-      nlohmann::json coef = nlohmann::json::object();
-      for (std::size_t j = 0; j < terms.size(); ++j) coef[terms[j].name] = a.fit.coefficients(static_cast<Eigen::Index>(j));
-      rep["quadratic"] = {{"coefficients_coded", coef}, {"r2", a.r2}, {"adj_r2", a.adj_r2},
-                          {"pred_r2", std::isfinite(a.pred_r2) ? nlohmann::json(a.pred_r2) : nlohmann::json(nullptr)},
-                          {"sigma", a.fit.sigma},
-                          {"loo_rmse", std::isfinite(quad_cv) ? nlohmann::json(quad_cv) : nlohmann::json(nullptr)}};
-      add_regression_tables(a, rep["quadratic"]);
-    } catch (const std::exception& e) {
-      rep["quadratic"] = {{"error", e.what()}};
-    }
+  const doe::SurrogateChoice c =
+      doe::choose_surrogate(U, y, names, {s.surrogate.model, s.seed, noise_var_floor});
+  if (c.quadratic_fit) {
+    const doe::RegressionAnalysis& a = *c.quadratic_fit;
+    const double quad_cv = c.quadratic_loo_rmse;
+    nlohmann::json coef = nlohmann::json::object();
+    for (std::size_t j = 0; j < c.terms.size(); ++j) coef[c.terms[j].name] = a.fit.coefficients(static_cast<Eigen::Index>(j));
+    rep["quadratic"] = {{"coefficients_coded", coef}, {"r2", a.r2}, {"adj_r2", a.adj_r2},
+                        {"pred_r2", std::isfinite(a.pred_r2) ? nlohmann::json(a.pred_r2) : nlohmann::json(nullptr)},
+                        {"sigma", a.fit.sigma},
+                        {"loo_rmse", std::isfinite(quad_cv) ? nlohmann::json(quad_cv) : nlohmann::json(nullptr)}};
+    add_regression_tables(a, rep["quadratic"]);
+  } else if (c.quadratic_tried) {
+    rep["quadratic"] = {{"error", c.quadratic_error}};
   }
-  if (s.surrogate.model != "quadratic" && y.size() >= 3) {
-    try {
-      doe::GpOptions o;
-      o.seed = s.seed;
-      // The noise variance may not fall below what the screening measured (as a fraction of the
-      // responses' variance, the GP's scale; at most 0.9, where the data are nearly all noise).
-      const double y_var = y.size() > 1 ? (y.array() - y.mean()).square().sum() / static_cast<double>(y.size() - 1) : 0.0;
-      if (noise_var_floor > 0.0 && y_var > 0.0) o.min_noise = std::clamp(noise_var_floor / y_var, o.min_noise, 0.9);
-      gp = std::make_shared<doe::GaussianProcess>(doe::GaussianProcess::fit(U, y, o));
-      gp_cv = gp->loo_rmse();
-      const auto h = gp->hyperparameters();
-      rep["gp"] = {{"kernel", "matern52"}, {"length_scales_coded", std::vector<double>(h.length_scales.data(), h.length_scales.data() + h.length_scales.size())},
-                   {"signal_sd", std::sqrt(h.signal_variance)}, {"noise_sd", std::sqrt(h.noise_variance)},
-                   {"loo_rmse", gp_cv},
-                   {"noise_floor_sd", noise_var_floor > 0.0 ? nlohmann::json(std::sqrt(noise_var_floor)) : nlohmann::json(nullptr)}};
-      rep["gp"]["loo_predicted"] = values_of(y - gp->loo_residuals());
-    } catch (const std::exception& e) {
-      rep["gp"] = {{"error", e.what()}};
-    }
+  if (c.gp) {
+    const auto h = c.gp->hyperparameters();
+    rep["gp"] = {{"kernel", "matern52"}, {"length_scales_coded", std::vector<double>(h.length_scales.data(), h.length_scales.data() + h.length_scales.size())},
+                 {"signal_sd", std::sqrt(h.signal_variance)}, {"noise_sd", std::sqrt(h.noise_variance)},
+                 {"loo_rmse", c.gp_loo_rmse},
+                 {"noise_floor_sd", noise_var_floor > 0.0 ? nlohmann::json(std::sqrt(noise_var_floor)) : nlohmann::json(nullptr)}};
+    rep["gp"]["loo_predicted"] = values_of(y - c.gp->loo_residuals());
+  } else if (c.gp_tried) {
+    rep["gp"] = {{"error", c.gp_error}};
   }
-  if (!quad && !gp) throw std::runtime_error("no surrogate could be fitted to " + std::to_string(y.size()) + " points");
-  const bool use_gp = gp && (!quad || gp_cv < quad_cv || s.surrogate.model == "gp");
-  out.kind = use_gp ? "gp" : "quadratic";
-  if (use_gp) out.surface = [gp](const Eigen::VectorXd& u) { return gp->predict(u).mean; };
-  else out.surface = [quad](const Eigen::VectorXd& u) { return (*quad)(u); };
+  out.kind = doe::to_string(c.kind);
+  out.surface = [c](const Eigen::VectorXd& u) { return c(u); };
   rep["chosen"] = out.kind;
   rep["choice_rule"] = s.surrogate.model == "auto" ? "smaller leave-one-out RMSE" : "set by the study";
   rep["data"] = {{"coded", rows_of(U)}, {"observed", values_of(y)}};

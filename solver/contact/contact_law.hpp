@@ -36,7 +36,7 @@
 //     fifth of the Rayleigh step; the spins then flip sign every step and grow until the energy
 //     guard stops the run (tests/physics/dashpot_stability_test.cpp).
 // The kernels hand both velocities to the law; the Simulation makes the "end" ones equal to the
-// half-step ones unless the predicted velocity is chosen (sim/simulation.cpp).
+// half-step ones unless the predicted velocity is chosen (integrate/velocity_verlet.hpp, VerletPass).
 #include "solver/contact/lanes.hpp"
 #include "solver/contact/model_kinds.hpp"
 #include "solver/contact/normal_damping.hpp"
@@ -67,24 +67,27 @@ struct ContactKinematics {
 };
 
 // What the law needs of the bodies' rotation: the lever arm from each body's centre of mass to
-// the contact point (`Bodies` = 2 for two spheres, 1 against a wall), CDT's lever R of each, and
-// for EPSD the relative spins and the rolling inertia.
+// the contact point (`Bodies` = 2 for two spheres, 1 against a wall: the j fields are then not
+// read), CDT's lever R of each, and for EPSD the relative spins and the rolling inertia. Named
+// fields, not arrays: the vector kernels keep every field in registers.
 template <class T, int Bodies>
 struct ContactRotation {
-  V3<T> arm_m[Bodies];
-  T cdt_lever_m[Bodies];
+  V3<T> arm_i_m, arm_j_m;
+  T cdt_lever_i_m, cdt_lever_j_m;
   V3<T> relative_spin, relative_spin_end;  // EPSD: w_i - w_j (a wall's spin for j)
   T rolling_inertia_kg_m2;                 // EPSD: I_r
 };
 
 template <class T, int Bodies>
 struct ContactResult {
-  V3<T> force_on_i_n;            // normal + tangential; j receives the opposite
-  V3<T> torque_n_m[Bodies];      // arm x force_on_i: +torque_n_m[0] on i, -torque_n_m[1] on j
-  T roll_capacity_n_m[Bodies];   // CDT: each body's share of its capacity (0 otherwise)
-  V3<T> rolling_torque_n_m;      // EPSD: on i, j receives the opposite (0 otherwise)
-  T normal_force_n;              // signed, positive = repulsive, after any clipping
-  T normal_stiffness_n_m;        // Sn
+  V3<T> force_on_i_n;              // normal + tangential; j receives the opposite
+  V3<T> torque_i_n_m;              // arm_i x force_on_i, on i
+  V3<T> torque_j_n_m;              // arm_j x force_on_i: j receives its opposite (Bodies = 2)
+  T roll_capacity_i_n_m;           // CDT: each body's share of its capacity (0 otherwise)
+  T roll_capacity_j_n_m;           // (Bodies = 2)
+  V3<T> rolling_torque_n_m;        // EPSD: on i, j receives the opposite (0 otherwise)
+  T normal_force_n;                // signed, positive = repulsive, after any clipping
+  T normal_stiffness_n_m;          // Sn
 };
 
 struct ContactSettings {
@@ -134,13 +137,14 @@ template <class O, RollingModel RM, int Bodies>
   r.force_on_i_n = f.force_on_i_n;
   r.normal_force_n = f.normal_force_n;
   r.normal_stiffness_n_m = f.normal_stiffness_n_m;
-  for (int b = 0; b < Bodies; ++b) {
-    r.torque_n_m[b] = cross(rot.arm_m[b], f.force_on_i_n);
-    r.roll_capacity_n_m[b] = zero;
-  }
+  r.torque_i_n_m = cross(rot.arm_i_m, f.force_on_i_n);
+  if constexpr (Bodies == 2) r.torque_j_n_m = cross(rot.arm_j_m, f.force_on_i_n);
+  r.roll_capacity_i_n_m = r.roll_capacity_j_n_m = zero;
   r.rolling_torque_n_m = {zero, zero, zero};
   if constexpr (RM == RollingModel::cdt) {
-    cdt_capacity<O>(c.rolling_friction, f.normal_force_n, rot.cdt_lever_m, r.roll_capacity_n_m);
+    const T per_lever = cdt_capacity_per_lever<O>(c.rolling_friction, f.normal_force_n);
+    r.roll_capacity_i_n_m = per_lever * rot.cdt_lever_i_m;
+    if constexpr (Bodies == 2) r.roll_capacity_j_n_m = per_lever * rot.cdt_lever_j_m;
   } else if constexpr (RM == RollingModel::epsd) {
     const EpsdIn<T> in{k.normal,           rot.relative_spin, rot.relative_spin_end,
                        c.rolling_friction, f.normal_force_n,  f.normal_stiffness_n_m,

@@ -22,10 +22,10 @@ ContactKinematics<double> kinematics() {
 
 ContactRotation<double, 2> rotation() {
   ContactRotation<double, 2> r;
-  r.arm_m[0] = {0.0, 0.0, 4.3e-3};
-  r.arm_m[1] = {1e-3, 0.0, -4.3e-3};
-  r.cdt_lever_m[0] = 4.3e-3;
-  r.cdt_lever_m[1] = 5.1e-3;
+  r.arm_i_m = {0.0, 0.0, 4.3e-3};
+  r.arm_j_m = {1e-3, 0.0, -4.3e-3};
+  r.cdt_lever_i_m = 4.3e-3;
+  r.cdt_lever_j_m = 5.1e-3;
   r.relative_spin = {0.0, 3.0, 0.0};
   r.relative_spin_end = {0.0, 3.0, 0.0};
   r.rolling_inertia_kg_m2 = 1.2e-9;
@@ -56,18 +56,18 @@ TEST(ContactLaw, TorquesAndRollingModels) {
   const ContactRotation<double, 2> rot = rotation();
   V3<double> t{0.0, 0.0, 0.0}, m_k{0.0, 0.0, 0.0};
   const auto none = contact_law<ScalarOps, RollingModel::none, 2>(kLaw, k, rot, t, m_k, kSettings);
-  for (int b = 0; b < 2; ++b) {
-    const V3<double> tq = cross(rot.arm_m[b], none.force_on_i_n);
-    EXPECT_TRUE(testing::same_bits(none.torque_n_m[b], tq)) << b;
-    EXPECT_EQ(none.roll_capacity_n_m[b], 0.0);
-  }
+  EXPECT_TRUE(testing::same_bits(none.torque_i_n_m, cross(rot.arm_i_m, none.force_on_i_n)));
+  EXPECT_TRUE(testing::same_bits(none.torque_j_n_m, cross(rot.arm_j_m, none.force_on_i_n)));
+  EXPECT_EQ(none.roll_capacity_i_n_m, 0.0);
+  EXPECT_EQ(none.roll_capacity_j_n_m, 0.0);
   EXPECT_EQ(testing::norm(none.rolling_torque_n_m), 0.0);
 
   t = {0.0, 0.0, 0.0};
   const auto cdt = contact_law<ScalarOps, RollingModel::cdt, 2>(kLaw, k, rot, t, m_k, kSettings);
-  for (int b = 0; b < 2; ++b)
-    EXPECT_DOUBLE_EQ(cdt.roll_capacity_n_m[b],
-                     kLaw.rolling_friction * std::abs(cdt.normal_force_n) * rot.cdt_lever_m[b]);
+  EXPECT_DOUBLE_EQ(cdt.roll_capacity_i_n_m,
+                   kLaw.rolling_friction * std::abs(cdt.normal_force_n) * rot.cdt_lever_i_m);
+  EXPECT_DOUBLE_EQ(cdt.roll_capacity_j_n_m,
+                   kLaw.rolling_friction * std::abs(cdt.normal_force_n) * rot.cdt_lever_j_m);
   EXPECT_EQ(testing::norm(cdt.rolling_torque_n_m), 0.0);
   EXPECT_EQ(testing::norm(m_k), 0.0);  // CDT keeps no rolling spring
 
@@ -75,7 +75,7 @@ TEST(ContactLaw, TorquesAndRollingModels) {
   const auto epsd = contact_law<ScalarOps, RollingModel::epsd, 2>(kLaw, k, rot, t, m_k, kSettings);
   EXPECT_LT(epsd.rolling_torque_n_m.y, 0.0);  // opposes the relative rolling about y
   EXPECT_LT(m_k.y, 0.0);
-  EXPECT_EQ(epsd.roll_capacity_n_m[0], 0.0);
+  EXPECT_EQ(epsd.roll_capacity_i_n_m, 0.0);
 }
 
 }  // namespace

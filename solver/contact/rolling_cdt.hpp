@@ -19,14 +19,12 @@
 
 namespace seedcal::lanes {
 
-// One contact's share of the capacity, mu_r |Fn| R for each lever R in `levers`.
-template <class O, int N>
-[[gnu::always_inline]] inline void cdt_capacity(typename O::T rolling_friction,
-                                                typename O::T normal_force_n,
-                                                const typename O::T (&levers_m)[N],
-                                                typename O::T (&capacity_n_m)[N]) {
-  const typename O::T per_lever = rolling_friction * O::abs(normal_force_n);
-  for (int i = 0; i < N; ++i) capacity_n_m[i] = per_lever * levers_m[i];
+// One contact's share of its body's capacity is mu_r |Fn| R with R the body's lever: this is
+// mu_r |Fn|, the share per metre of lever (contact_law.hpp multiplies by each body's R).
+template <class O>
+[[gnu::always_inline]] inline typename O::T cdt_capacity_per_lever(typename O::T rolling_friction,
+                                                                   typename O::T normal_force_n) {
+  return rolling_friction * O::abs(normal_force_n);
 }
 
 }  // namespace seedcal::lanes

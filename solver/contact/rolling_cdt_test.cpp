@@ -11,34 +11,22 @@ namespace seedcal {
 namespace {
 
 TEST(RollingCdt, CapacityIsMuRTimesNormalForceTimesLever) {
-  const double levers[2] = {4.3e-3, 6.1e-3};
   for (const double fn : {12.0, -0.25}) {  // |Fn|: also in the attractive tail
-    double c[2];
-    lanes::cdt_capacity<lanes::ScalarOps, 2>(0.05, fn, levers, c);
-    EXPECT_DOUBLE_EQ(c[0], 0.05 * std::abs(fn) * 4.3e-3);
-    EXPECT_DOUBLE_EQ(c[1], 0.05 * std::abs(fn) * 6.1e-3);
+    const double per_lever = lanes::cdt_capacity_per_lever<lanes::ScalarOps>(0.05, fn);
+    EXPECT_DOUBLE_EQ(per_lever * 4.3e-3, 0.05 * std::abs(fn) * 4.3e-3);
   }
-  const double one[1] = {4.3e-3};
-  double c[1];
-  lanes::cdt_capacity<lanes::ScalarOps, 1>(0.0, 12.0, one, c);
-  EXPECT_EQ(c[0], 0.0);
+  EXPECT_EQ(lanes::cdt_capacity_per_lever<lanes::ScalarOps>(0.0, 12.0), 0.0);
 }
 
 TEST(RollingCdt, FourLanesGiveTheBitsOfOne) {
-  using lanes::testing::G4;
-  const double mu[4] = {0.02, 0.05, 0.12, 0.0}, fn[4] = {1.0, -3.0, 16.0, 5.0},
-               lever[4] = {1e-3, 4e-3, 6e-3, 2e-3};
-  const G4 levers4[1] = {lanes::testing::lanes4(lever[0], lever[1], lever[2], lever[3])};
-  G4 c4[1];
-  lanes::cdt_capacity<lanes::testing::Generic4Ops, 1>(
+  const double mu[4] = {0.02, 0.05, 0.12, 0.0}, fn[4] = {1.0, -3.0, 16.0, 5.0};
+  const lanes::testing::G4 c4 = lanes::cdt_capacity_per_lever<lanes::testing::Generic4Ops>(
       lanes::testing::lanes4(mu[0], mu[1], mu[2], mu[3]),
-      lanes::testing::lanes4(fn[0], fn[1], fn[2], fn[3]), levers4, c4);
-  for (int l = 0; l < 4; ++l) {
-    const double levers[1] = {lever[l]};
-    double c[1];
-    lanes::cdt_capacity<lanes::ScalarOps, 1>(mu[l], fn[l], levers, c);
-    EXPECT_TRUE(lanes::testing::same_bits(c4[0][l], c[0])) << l;
-  }
+      lanes::testing::lanes4(fn[0], fn[1], fn[2], fn[3]));
+  for (int l = 0; l < 4; ++l)
+    EXPECT_TRUE(lanes::testing::same_bits(
+        c4[l], lanes::cdt_capacity_per_lever<lanes::ScalarOps>(mu[l], fn[l])))
+        << l;
 }
 
 // A body the capacity can stop within the step is stopped exactly: L + h (T + tau) = 0.

@@ -136,13 +136,13 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
                                    (vei + cross(wei, rci)) - (vej + cross(wej, rcj)),
                                    O::gather(sc, 0)};
     ContactRotation<T, 2> rot;
-    rot.arm_m[0] = rci;
-    rot.arm_m[1] = rcj;
+    rot.arm_i_m = rci;
+    rot.arm_j_m = rcj;
     V3<T> t = load3<O>(hist, 0);
     V3<T> m_k{zero, zero, zero};
     if constexpr (RM == RollingModel::cdt) {
-      rot.cdt_lever_m[0] = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rci, rci)) : arm_i;
-      rot.cdt_lever_m[1] = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j;
+      rot.cdt_lever_i_m = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rci, rci)) : arm_i;
+      rot.cdt_lever_j_m = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j;
     } else if constexpr (epsd) {
       rot.relative_spin = wi - wj;
       rot.relative_spin_end = wei - wej;
@@ -160,19 +160,27 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     // accumulator (force, torque, rolling capacity, pad) and the eight to subtract from j's.
     alignas(64) double add_i[W][8], sub_j[W][8];
     O::store_lanes8(add_i, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z,
-                    f.torque_n_m[0].x, f.torque_n_m[0].y, f.torque_n_m[0].z,
-                    f.roll_capacity_n_m[0], zero);
+                    f.torque_i_n_m.x, f.torque_i_n_m.y, f.torque_i_n_m.z,
+                    f.roll_capacity_i_n_m, zero);
     O::store_lanes8(sub_j, f.force_on_i_n.x, f.force_on_i_n.y, f.force_on_i_n.z,
-                    f.torque_n_m[1].x, f.torque_n_m[1].y, f.torque_n_m[1].z,
-                    -f.roll_capacity_n_m[1], zero);
+                    f.torque_j_n_m.x, f.torque_j_n_m.y, f.torque_j_n_m.z,
+                    -f.roll_capacity_j_n_m, zero);
     static_assert(L::kAccForce == 0 && L::kAccTorque == 3 && L::kAccRollCapacity == 6 &&
                   L::kAccStride == 8);
     // The springs (tangential, then EPSD's rolling spring and torque), one row per component.
-    constexpr int kRows = epsd ? 9 : 3;
-    alignas(64) double out[kRows][W];
-    const T* rows[9] = {&t.x, &t.y, &t.z, &m_k.x, &m_k.y, &m_k.z, &f.rolling_torque_n_m.x,
-                        &f.rolling_torque_n_m.y, &f.rolling_torque_n_m.z};
-    for (int r = 0; r < kRows; ++r) O::store(out[r], *rows[r]);
+    // Stored value by value: taking the results' addresses would keep them out of registers.
+    alignas(64) double out[epsd ? 9 : 3][W];
+    O::store(out[0], t.x);
+    O::store(out[1], t.y);
+    O::store(out[2], t.z);
+    if constexpr (epsd) {
+      O::store(out[3], m_k.x);
+      O::store(out[4], m_k.y);
+      O::store(out[5], m_k.z);
+      O::store(out[6], f.rolling_torque_n_m.x);
+      O::store(out[7], f.rolling_torque_n_m.y);
+      O::store(out[8], f.rolling_torque_n_m.z);
+    }
     for (int l = 0; l < used; ++l) {
       double* acc_i = a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride;
       double* acc_j = a.accumulators + static_cast<std::size_t>(bj[l]) * L::kAccStride;
@@ -275,11 +283,11 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
                                    (ve + cross(we, rc)) - vw, O::gather(sc, 0)};
     const T zero = O::splat(0.0);
     ContactRotation<T, 1> rot;
-    rot.arm_m[0] = rc;
+    rot.arm_i_m = rc;
     V3<T> t = load3<O>(hist, 0);
     V3<T> m_k{zero, zero, zero};
     if constexpr (RM == RollingModel::cdt) {
-      rot.cdt_lever_m[0] = O::gather(rec, 12);
+      rot.cdt_lever_i_m = O::gather(rec, 12);
     } else if constexpr (epsd) {
       V3<T> ws;
       T inertia;
@@ -290,27 +298,28 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
       m_k = load3<O>(roll, 0);
     }
     const ContactResult<T, 1> f = contact_law<O, RM, 1>(law, kin, rot, t, m_k, settings);
-    constexpr int kRows = epsd ? 18 : 12;
-    alignas(64) double row[kRows][W];
-    const T* rows[18] = {&t.x,
-                         &t.y,
-                         &t.z,
-                         &f.force_on_i_n.x,
-                         &f.force_on_i_n.y,
-                         &f.force_on_i_n.z,
-                         &f.torque_n_m[0].x,
-                         &f.torque_n_m[0].y,
-                         &f.torque_n_m[0].z,
-                         &f.roll_capacity_n_m[0],
-                         &f.normal_force_n,
-                         &f.normal_stiffness_n_m,
-                         &m_k.x,
-                         &m_k.y,
-                         &m_k.z,
-                         &f.rolling_torque_n_m.x,
-                         &f.rolling_torque_n_m.y,
-                         &f.rolling_torque_n_m.z};
-    for (int r = 0; r < kRows; ++r) O::store(row[r], *rows[r]);
+    // Stored value by value: taking the results' addresses would keep them out of registers.
+    alignas(64) double row[epsd ? 18 : 12][W];
+    O::store(row[0], t.x);
+    O::store(row[1], t.y);
+    O::store(row[2], t.z);
+    O::store(row[3], f.force_on_i_n.x);
+    O::store(row[4], f.force_on_i_n.y);
+    O::store(row[5], f.force_on_i_n.z);
+    O::store(row[6], f.torque_i_n_m.x);
+    O::store(row[7], f.torque_i_n_m.y);
+    O::store(row[8], f.torque_i_n_m.z);
+    O::store(row[9], f.roll_capacity_i_n_m);
+    O::store(row[10], f.normal_force_n);
+    O::store(row[11], f.normal_stiffness_n_m);
+    if constexpr (epsd) {
+      O::store(row[12], m_k.x);
+      O::store(row[13], m_k.y);
+      O::store(row[14], m_k.z);
+      O::store(row[15], f.rolling_torque_n_m.x);
+      O::store(row[16], f.rolling_torque_n_m.y);
+      O::store(row[17], f.rolling_torque_n_m.z);
+    }
     for (int l = 0; l < used; ++l) {
       const std::size_t i = base + static_cast<std::size_t>(l);
       double* spring = a.tangential_m + 3 * in[i].pair;
