@@ -25,6 +25,14 @@ template <class O>
   return {O::gather(p, offset), O::gather(p, offset + 1), O::gather(p, offset + 2)};
 }
 
+// The three components of v into rows[0], rows[1], rows[2] (one double per lane each).
+template <class O, int W>
+[[gnu::always_inline]] inline void store_rows3(double (*rows)[W], const V3<typename O::T>& v) {
+  O::store(rows[0], v.x);
+  O::store(rows[1], v.y);
+  O::store(rows[2], v.z);
+}
+
 // Listed pairs ahead of the batch whose body records and accumulators are prefetched.
 inline constexpr std::size_t kPrefetchAhead = 8;
 
@@ -170,16 +178,10 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     // The springs (tangential, then EPSD's rolling spring and torque), one row per component.
     // Stored value by value: taking the results' addresses would keep them out of registers.
     alignas(64) double out[epsd ? 9 : 3][W];
-    O::store(out[0], t.x);
-    O::store(out[1], t.y);
-    O::store(out[2], t.z);
+    store_rows3<O, W>(out, t);
     if constexpr (epsd) {
-      O::store(out[3], m_k.x);
-      O::store(out[4], m_k.y);
-      O::store(out[5], m_k.z);
-      O::store(out[6], f.rolling_torque_n_m.x);
-      O::store(out[7], f.rolling_torque_n_m.y);
-      O::store(out[8], f.rolling_torque_n_m.z);
+      store_rows3<O, W>(out + 3, m_k);
+      store_rows3<O, W>(out + 6, f.rolling_torque_n_m);
     }
     for (int l = 0; l < used; ++l) {
       double* acc_i = a.accumulators + static_cast<std::size_t>(bi[l]) * L::kAccStride;
@@ -300,25 +302,15 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
     const ContactResult<T, 1> f = contact_law<O, RM, 1>(law, kin, rot, t, m_k, settings);
     // Stored value by value: taking the results' addresses would keep them out of registers.
     alignas(64) double row[epsd ? 18 : 12][W];
-    O::store(row[0], t.x);
-    O::store(row[1], t.y);
-    O::store(row[2], t.z);
-    O::store(row[3], f.force_on_i_n.x);
-    O::store(row[4], f.force_on_i_n.y);
-    O::store(row[5], f.force_on_i_n.z);
-    O::store(row[6], f.torque_i_n_m.x);
-    O::store(row[7], f.torque_i_n_m.y);
-    O::store(row[8], f.torque_i_n_m.z);
+    store_rows3<O, W>(row, t);
+    store_rows3<O, W>(row + 3, f.force_on_i_n);
+    store_rows3<O, W>(row + 6, f.torque_i_n_m);
     O::store(row[9], f.roll_capacity_i_n_m);
     O::store(row[10], f.normal_force_n);
     O::store(row[11], f.normal_stiffness_n_m);
     if constexpr (epsd) {
-      O::store(row[12], m_k.x);
-      O::store(row[13], m_k.y);
-      O::store(row[14], m_k.z);
-      O::store(row[15], f.rolling_torque_n_m.x);
-      O::store(row[16], f.rolling_torque_n_m.y);
-      O::store(row[17], f.rolling_torque_n_m.z);
+      store_rows3<O, W>(row + 12, m_k);
+      store_rows3<O, W>(row + 15, f.rolling_torque_n_m);
     }
     for (int l = 0; l < used; ++l) {
       const std::size_t i = base + static_cast<std::size_t>(l);
