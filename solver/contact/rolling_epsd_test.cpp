@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "solver/contact/lanes_test_support.hpp"
 
@@ -57,7 +58,7 @@ TEST(RollingEpsd, SpringTurnsWithTheContactKeepingItsMagnitude) {
   const double len0 = norm(m_k);
   epsd_torque<ScalarOps>(in, kEta, kDt, m_k);
   // To a few roundings of the projection and the rescaling: 4 machine epsilons of the moment.
-  const double eps = 4.0 * 2.220446049250313e-16 * len0;
+  const double eps = 4.0 * std::numeric_limits<double>::epsilon() * len0;
   EXPECT_NEAR(dot(m_k, in.normal), 0.0, eps);
   EXPECT_NEAR(norm(m_k), len0, eps);
 }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "solver/contact/lanes_test_support.hpp"
 
@@ -53,7 +54,7 @@ TEST(TangentialSpring, TurnsWithTheContactKeepingItsLength) {
   const double len0 = norm(t);
   const V3<double> ft = mindlin_tangential<ScalarOps>(in, t, kDt);
   // To a few roundings of the projection and the rescaling: 4 machine epsilons of the length.
-  const double eps = 4.0 * 2.220446049250313e-16 * len0;
+  const double eps = 4.0 * std::numeric_limits<double>::epsilon() * len0;
   EXPECT_NEAR(dot(t, in.normal), 0.0, eps);
   EXPECT_NEAR(norm(t), len0, eps);
   EXPECT_NEAR(norm(ft), kSn * kRatio * kRatio * len0, 1e-12 * norm(ft));

@@ -77,10 +77,6 @@ inline void set_group_damping_scale(int touching, double* scale) {
   std::fill_n(scale, touching, hmnr_damping_scale(touching));
 }
 
-}  // namespace
-
-namespace {
-
 // One thread's shares of the pass.
 template <NormalModel NM, RollingModel RM>
 void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& plan, int t,
@@ -203,7 +199,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
   KernelScratch& sc = plan.scratch[ti];
   // CDT: each contact adds its capacity mu_r |Fn| R_i to its body; the force reduction turns the
   // body's total into its rolling torque (contact/rolling_cdt_torque.hpp). Filled here and handed
-  // over at the end: the vectors' own records sit side by side in thread_cdt_wall_, and a
+  // over at the end: the vectors' own records sit side by side in ThreadPlan::cdt_wall, and a
   // push_back into them would write to a line the other threads use.
   std::vector<CdtWallShare> cdt_wall;
   if constexpr (RM == RollingModel::cdt) {
@@ -229,7 +225,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     const std::uint32_t* __restrict SI = pairs.si().data();
     const std::uint32_t* __restrict SJ = pairs.sj().data();
     double* __restrict TG = args.tangential_m;
-    double* __restrict RG = epsd ? args.rolling_m : nullptr;
+    double* __restrict RG = args.rolling_m;  // null unless EPSD (prepare_contact_pass)
     std::uint8_t* __restrict LIVE = pairs.live().data();
     int* __restrict GT = pipe.sphere_group_touch.data();
     for (std::size_t sh = ti; sh < shares.size(); sh += team)
