@@ -13,10 +13,10 @@ namespace seedcal::reports {
 
 Document build_report(const StudyData& study) {
   Document doc;
-  const std::string name = study.summary.value("study", std::string());
+  const std::string name = study.summary ? study.summary->study : std::string();
   doc.title = "Calibration report" + (name.empty() ? std::string() : ": " + name);
-  const auto prov = study.summary.value("provenance", nlohmann::json::object());
-  if (prov.contains("study_file")) doc.subtitle.push_back("Study file " + format_value(prov["study_file"]));
+  if (study.summary && !study.summary->provenance.study_file.empty())
+    doc.subtitle.push_back("Study file " + study.summary->provenance.study_file);
   doc.subtitle.push_back("Study directory " + study.dir + "; rendered by seedcal " + version_string());
   add_answer_section(study, doc);
   add_inputs_section(study, doc);

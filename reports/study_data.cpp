@@ -46,17 +46,10 @@ StudyData load_study(const std::string& dir) {
     d.problems.push_back(store + " is missing: only summary.json is reported");
   }
   if (fs::exists(summary)) {
-    std::ifstream in(summary);
-    std::stringstream text;
-    text << in.rdbuf();
     try {
-      d.summary = nlohmann::json::parse(text.str());
-      if (!d.summary.is_object()) {
-        d.problems.push_back(summary + " is not a JSON object: left out");
-        d.summary = nlohmann::json::object();
-      }
-    } catch (const nlohmann::json::exception& e) {
-      d.problems.push_back(summary + " could not be read (" + e.what() + "): left out");
+      d.summary = read_study_summary(summary);
+    } catch (const InputError& e) {
+      d.problems.push_back(std::string(e.what()) + ": left out");
     }
   }
   return d;

@@ -1,12 +1,14 @@
 #pragma once
 // Everything a report reads from a study directory: the store (DIR/study.h5: header, every DEM
 // evaluation, the stages' JSON), DIR/summary.json and the scene outputs under DIR/scenes/.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "store/study_store.hpp"
+#include "store/study_summary.hpp"
 
 namespace seedcal::reports {
 
@@ -16,7 +18,7 @@ struct StudyData {
   StudyHeader header;
   std::vector<EvaluationRecord> evaluations;
   nlohmann::json stages = nlohmann::json::object();
-  nlohmann::json summary = nlohmann::json::object();  // empty when there is no summary.json
+  std::optional<StudySummary> summary;               // unset when there is no readable summary.json
   std::vector<std::string> problems;                  // what could not be read (shown in the report)
 
   // The stage's JSON, or nullptr when the store has no such stage.

@@ -139,7 +139,7 @@ StudyData fixture(const fs::path& dir) {
          "0,0,0,10000,0.02\n0.001,50000,45000,10000,0.02\n0.002,80000,78000,10000,0.02\n0.003,nan,79000,10000,0.02\n";
   StudyData d;
   d.dir = dir.string();
-  d.summary = nlohmann::json::parse(R"({
+  d.summary = summary_from_json(nlohmann::json::parse(R"({
     "study": "fixture", "stage_reached": "done", "converged": true, "evaluations": 40, "classical_workflow_evaluations": 93,
     "cpu_seconds": 600.5, "wall_seconds": 320.0, "tolerance": 0.02,
     "calibrated": {"seed_seed.static_friction": 0.5}, "held_at_nominal": {"seed_seed.restitution": 0.45},
@@ -161,7 +161,7 @@ StudyData fixture(const fs::path& dir) {
       {"model": "manual-9", "spheres": 9, "mean_abs_rel_error": 0.05, "cpu_seconds": 300.0, "score": 1.0, "pareto": true, "calibrated": {"seed_seed.static_friction": 0.5}},
       {"model": "auto-3", "spheres": 3, "mean_abs_rel_error": 0.12, "cpu_seconds": 90.0, "score": 0.7, "pareto": true, "calibrated": {"seed_seed.static_friction": 0.6}},
       {"model": "auto-20", "spheres": 20, "mean_abs_rel_error": 0.06, "cpu_seconds": 800.0, "score": 0.4, "pareto": false, "calibrated": {}}]}
-  })");
+  })"), "fixture summary.json");
   // An older store's solve stage: no ANOVA rows, no leave-one-out predictions, no prediction grid.
   d.has_store = true;
   d.stages["solve_round_1"] = nlohmann::json::parse(R"({

@@ -237,7 +237,9 @@ TEST(FinishedStudy, AnUnfinishedOrMissingStudyIsBadInput) {
   const std::string unfinished = message({dir.string(), "", ""});
   EXPECT_NE(unfinished.find("stage_reached = \"confirm\": the study is not finished"), std::string::npos) << unfinished;
   std::ofstream(dir / "summary.json") << R"({"stage_reached": "done", "calibrated": {}, "held_at_nominal": {}})";
-  EXPECT_NE(message({dir.string(), "", ""}).find("provenance is missing"), std::string::npos);
+  EXPECT_NE(message({dir.string(), "", ""}).find("provenance.study_file is missing"), std::string::npos);
+  std::ofstream(dir / "summary.json") << R"({"stage_reached": "done", "calibrated": {"a": "x"}})";
+  EXPECT_NE(message({dir.string(), "", ""}).find("calibrated.a is not a number"), std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

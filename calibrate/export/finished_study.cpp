@@ -1,45 +1,22 @@
 #include "calibrate/export/finished_study.hpp"
 
+#include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "calibrate/pipeline/evaluation.hpp"
 #include "calibrate/pipeline/study_config.hpp"
 #include "store/errors.hpp"
+#include "store/study_summary.hpp"
 
 namespace seedcal {
 namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_summary(const std::string& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw InputError(path + ": cannot open the file: a study directory holds the summary.json that `seedcal calibrate "
-                            "STUDY.toml --out DIR` writes");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw InputError(path + ": not JSON (" + std::string(e.what()) + ")");
-  }
-}
-
-// summary.json's `key` (dotted), which must be of `type` ("string", "object").
-const nlohmann::json& summary_member(const nlohmann::json& j, const std::string& path, const std::string& key,
-                             const std::string& type) {
-  const nlohmann::json* v = &j;
-  std::string walked;
-  std::istringstream parts(key);
-  for (std::string part; std::getline(parts, part, '.');) {
-    walked += (walked.empty() ? "" : ".") + part;
-    if (!v->is_object() || !v->contains(part))
-      throw InputError(path + ": " + walked + " is missing (a summary.json of `seedcal calibrate` has it)");
-    v = &(*v)[part];
-  }
-  const bool ok = type == "string" ? v->is_string() : type == "object" ? v->is_object() : true;
-  if (!ok) throw InputError(path + ": " + key + " = " + v->dump() + ": must be a JSON " + type);
-  return *v;
+// summary.json's `key`, which a finished study has: refused when the summary lacks it.
+const std::string& required(const std::string& value, const std::string& path, const std::string& key) {
+  if (value.empty()) throw InputError(path + ": " + key + " is missing (a summary.json of `seedcal calibrate` has it)");
+  return value;
 }
 
 std::string describe_tests(const StudyConfig& s) {
@@ -54,17 +31,20 @@ ExportedModel read_finished_study(const FinishedStudyOptions& o) {
   if (!fs::is_directory(o.study_dir))
     throw InputError(o.study_dir + ": no such directory (allowed: a study directory, `seedcal calibrate --out DIR`)");
   const std::string summary_path = (fs::path(o.study_dir) / "summary.json").string();
-  const nlohmann::json summary = read_summary(summary_path);
-  const std::string stage = summary_member(summary, summary_path, "stage_reached", "string").get<std::string>();
+  if (!fs::exists(summary_path))
+    throw InputError(summary_path + ": cannot open the file: a study directory holds the summary.json that `seedcal calibrate "
+                                    "STUDY.toml --out DIR` writes");
+  const StudySummary summary = read_study_summary(summary_path);
+  const std::string& stage = required(summary.stage_reached, summary_path, "stage_reached");
   if (stage != "done")
     throw InputError(summary_path + ": stage_reached = \"" + stage +
                      "\": the study is not finished (allowed: \"done\"); finish it with `seedcal calibrate STUDY.toml "
                      "--out " + o.study_dir + " --resume`");
-  const std::string recorded_file = summary_member(summary, summary_path, "provenance.study_file", "string").get<std::string>();
-  const std::string text = summary_member(summary, summary_path, "provenance.config", "string").get<std::string>();
-  const std::string hash = summary_member(summary, summary_path, "provenance.config_hash", "string").get<std::string>();
-  const nlohmann::json& calibrated = summary_member(summary, summary_path, "calibrated", "object");
-  const nlohmann::json& held = summary_member(summary, summary_path, "held_at_nominal", "object");
+  const std::string& recorded_file = required(summary.provenance.study_file, summary_path, "provenance.study_file");
+  const std::string& text = required(summary.provenance.config, summary_path, "provenance.config");
+  const std::string& hash = required(summary.provenance.config_hash, summary_path, "provenance.config_hash");
+  const ParameterValues& calibrated = summary.calibrated;
+  const ParameterValues& held = summary.held_at_nominal;
 
   const std::string study_file = o.study_file.empty() ? recorded_file : o.study_file;
   if (!fs::exists(study_file))
@@ -86,8 +66,8 @@ ExportedModel read_finished_study(const FinishedStudyOptions& o) {
   // The chosen clump model (stage 7), or the calibrated one when the study chose none.
   std::size_t model = 0;
   std::string reason = "the study's first model, the one it calibrated (it verified no other)";
-  if (summary.contains("model_selection") && summary["model_selection"].is_object()) {
-    const nlohmann::json& sel = summary["model_selection"];
+  if (summary.model_selection.is_object()) {
+    const nlohmann::json& sel = summary.model_selection;
     if (sel.contains("chosen") && sel["chosen"].is_string()) {
       const std::string name = sel["chosen"].get<std::string>();
       bool found = false;
@@ -118,23 +98,22 @@ ExportedModel read_finished_study(const FinishedStudyOptions& o) {
   // The values every run of the study's last stages used: each parameter calibrated or held.
   nlohmann::json point = nlohmann::json::object();
   for (const StudyParameter& p : s.parameters) {
-    const nlohmann::json* v = calibrated.contains(p.path) ? &calibrated[p.path]
-                              : held.contains(p.path)     ? &held[p.path]
-                                                          : nullptr;
-    if (!v || !v->is_number())
+    const auto c = calibrated.find(p.path), h = held.find(p.path);
+    const double v = c != calibrated.end() ? c->second : h != held.end() ? h->second : std::nan("");
+    if (!std::isfinite(v))
       throw InputError(summary_path + ": calibrated / held_at_nominal: parameter \"" + p.path +
                        "\" has no value (a finished study gives every parameter one)");
-    point[p.path] = v->get<double>();
+    point[p.path] = v;
   }
   const StudyTarget& t = s.scene_of(test);
   const StudyModel& chosen = s.models.at(model);
   ExportedModel m = exported_model_from_scene(t.scene, scene_overrides(chosen, t, point));
-  m.study_name = summary.value("study", s.name);
+  m.study_name = summary.study.empty() ? s.name : summary.study;
   m.study_dir = o.study_dir;
   m.model_name = chosen.name;
   m.model_reason = reason;
   m.test_name = t.name;
-  m.converged = summary.value("converged", false);
+  m.converged = summary.converged;
   m.calibrated = calibrated;
   m.held_at_nominal = held;
   return m;

@@ -229,7 +229,7 @@ std::string liggghts_settle_deck(const ExportedModel& m, const SettleDeck& d, co
   o << "thermo          $(round(0.05/v_dt_s))\n";
   o << "thermo_modify   lost error norm no\n";
   o << "run             1\nunfix           seedcal_pour\n\n";
-  // seedcal's settle rule (solver/scenes/settle.hpp): mean kinetic energy per body below
+  // seedcal's settle rule (solver/sim/settle.hpp): mean kinetic energy per body below
   // ratio x m g d, d twice the largest sphere radius.
   o << "# Settle: kinetic energy per body below settle_energy_ratio x m g d, m g d = "
     << exact_number_text(m.seeds.body.mass_kg * g * 2.0 * m.largest_sphere_radius_m()) << " J\n";

@@ -44,6 +44,7 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std:
   const std::size_t per_round = static_cast<std::size_t>(s.confirm.replicates) * s.targets.size();
   nlohmann::json out = {{"round", round}, {"rounds_pooled", pool.size() / per_round}, {"targets", nlohmann::json::object()}};
   bool all_ok = true;
+  st.confirmed.clear();
   for (std::size_t t = 0; t < s.targets.size(); ++t) {
     std::vector<double> v;
     std::vector<std::uint64_t> seeds;
@@ -52,42 +53,48 @@ nlohmann::json confirm_at(StudyEvaluator& ev, PipelineState& st, int round, std:
         v.push_back(record_metric(s, r));
         seeds.push_back(r.seed);
       }
-    const double T = s.targets[t].value;
-    nlohmann::json c = {{"samples", v}, {"seeds", seeds}, {"n", v.size()}, {"target", T}};
+    ConfirmedTarget c;
+    c.target = s.targets[t].value;
+    c.samples = v;
+    c.seeds = seeds;
+    const std::string& metric = s.targets[t].metric;
     if (v.size() < 2) {
-      c["note"] = "fewer than two replicates finished: nothing is confirmed";
+      c.note = "fewer than two replicates finished: nothing is confirmed";
       all_ok = false;
-      out["targets"][s.targets[t].metric] = c;
+      out["targets"][metric] = to_json(c);
+      st.confirmed[metric] = c;
       continue;
     }
+    const double T = c.target;
     const double mean = gsl_stats_mean(v.data(), 1, v.size());
     const double sd = gsl_stats_sd_m(v.data(), 1, v.size(), mean);  // sample sd (n - 1)
     const double e = mean / T - 1.0;
     const double q = gsl_cdf_tdist_Pinv(0.5 * (1.0 + s.confirm.confidence), static_cast<double>(v.size() - 1));
     const double half = q * sd / (std::sqrt(static_cast<double>(v.size())) * std::fabs(T));
+    ConfirmedStats& x = c.stats.emplace();
     // Replicates that would put the whole interval inside +-tolerance if the mean sat on the
     // target: n >= (t sd / (tol |T|))^2 (t from the pool's degrees of freedom: an estimate).
     const double need = std::pow(q * sd / (s.confirm.tolerance * std::fabs(T)), 2.0);
-    c["replicates_to_resolve_tolerance"] = static_cast<long>(std::ceil(std::max(need, 2.0)));
-    c["cv"] = sd / std::fabs(mean);
-    c["mean"] = mean;
-    c["sd"] = sd;
-    c["rel_error"] = e;
-    c["rel_error_ci"] = {e - half, e + half};
-    c["confidence"] = s.confirm.confidence;
-    c["within_tolerance"] = std::fabs(e) <= s.confirm.tolerance;
-    c["resolved"] = std::fabs(e) + half <= s.confirm.tolerance;
+    x.replicates_to_resolve_tolerance = static_cast<long>(std::ceil(std::max(need, 2.0)));
+    x.cv = sd / std::fabs(mean);
+    x.mean = mean;
+    x.sd = sd;
+    x.rel_error = e;
+    x.rel_error_ci = {e - half, e + half};
+    x.confidence = s.confirm.confidence;
+    x.within_tolerance = std::fabs(e) <= s.confirm.tolerance;
+    x.resolved = std::fabs(e) + half <= s.confirm.tolerance;
     // The interval excludes zero: the point misses the target beyond the scatter.
-    c["significant_miss"] = e - half > 0.0 || e + half < 0.0;
+    x.significant_miss = e - half > 0.0 || e + half < 0.0;
     all_ok = all_ok && std::fabs(e) <= s.confirm.tolerance;
-    out["targets"][s.targets[t].metric] = c;
+    out["targets"][metric] = to_json(c);
+    st.confirmed[metric] = c;
   }
   out["converged"] = all_ok;
   out["runs_at_point"] = pool.size();  // DEM runs at this point, every target's
   nlohmann::json at = nlohmann::json::object();
   for (std::size_t p = 0; p < s.parameters.size(); ++p) at[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
   out["point"] = at;
-  st.confirmed = out["targets"];
   st.converged = all_ok;
   return out;
 }

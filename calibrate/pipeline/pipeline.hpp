@@ -5,6 +5,7 @@
 // answers finished runs from the store), and records its design and fits in the store.
 #include <algorithm>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "calibrate/pipeline/study_evaluator.hpp"
 #include "doe/rsm/level_curve.hpp"
 #include "doe/surrogate/gaussian_process.hpp"
+#include "store/study_summary.hpp"
 
 namespace seedcal {
 
@@ -36,7 +38,7 @@ struct PipelineState {
   std::string surrogate_kind;       // per primary target: "quadratic" or "gp"
   Eigen::VectorXd chosen;           // natural, every parameter
   nlohmann::json solution;          // the solve stage's report
-  nlohmann::json confirmed;         // metric -> {mean, sd, rel_error, ...}
+  std::map<std::string, ConfirmedTarget> confirmed;  // metric -> the last confirmation round
   nlohmann::json posterior;         // after confirmation: intervals and identification (posterior_stage.cpp)
   // The pick along the solution curve (curve_stage.cpp). The curve: one target's level set through
   // the confirmed point, box-coded, traced by the posterior stage on its refitted surrogate (not

@@ -38,75 +38,8 @@ StudyStore open_store(const StudyRunOptions& o, const StudyConfig& s, const std:
   return StudyStore::create(path, h);
 }
 
-nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const std::vector<PipelineState>& others,
-                          const StudyEvaluator& ev, const StudyStore& store, const std::string& stage_reached,
-                          const std::string& hash) {
-  nlohmann::json j;
-  j["schema_version"] = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
-  j["study"] = s.name;
-  j["stage_reached"] = stage_reached;
-  nlohmann::json calibrated = nlohmann::json::object(), held = nlohmann::json::object();
-  if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
-    for (std::size_t p = 0; p < s.parameters.size(); ++p) {
-      (st.is_kept(static_cast<int>(p)) ? calibrated : held)[s.parameters[p].path] = st.chosen(static_cast<Eigen::Index>(p));
-    }
-  }
-  j["calibrated"] = calibrated;
-  j["held_at_nominal"] = held;
-  nlohmann::json targets = nlohmann::json::object();
-  for (const auto& t : s.targets) targets[t.metric] = t.value;
-  j["targets"] = targets;
-  j["confirmed"] = st.confirmed.is_null() ? nlohmann::json::object() : st.confirmed;
-  j["converged"] = st.converged;
-  j["confirmation_rounds"] = st.rounds;
-  // Calibration runs (stages 1-5: what the classical workflow's count compares with); the
-  // verification runs come on top.
-  j["evaluations"] = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
-  j["evaluations_total"] = ev.runs_used();
-  j["evaluations_from_store"] = ev.runs_reused();
-  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations; every point runs every
-  // target's test (a joint study of two tests runs both at each point).
-  j["classical_workflow_evaluations"] = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
-  j["solution_set"] = st.solution.is_null() ? nlohmann::json::object() : st.solution;
-  // The posterior (posterior_stage.cpp): 95 % credible intervals and identification, with reasons.
-  const bool has_posterior = st.posterior.is_object();
-  j["calibrated_interval"] = has_posterior ? st.posterior.value("calibrated_interval", nlohmann::json::object())
-                                           : nlohmann::json::object();
-  j["identified"] = has_posterior ? st.posterior.value("identified", nlohmann::json::object()) : nlohmann::json::object();
-  if (has_posterior) {
-    nlohmann::json d = st.posterior;
-    d.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
-    j["posterior"] = d;
-  }
-  if (st.curve.is_object()) j["curve"] = st.curve;
-  // [verify] calibrate_each_model: every model's own calibration, the first's as above.
-  if (s.verify.calibrate_each_model && s.models.size() > 1) {
-    nlohmann::json per = nlohmann::json::array();
-    for (std::size_t m = 0; m < s.models.size(); ++m) {
-      const PipelineState& sm = m == 0 ? st : others[m];
-      nlohmann::json e = {{"model", s.models[m].name}, {"stage_prefix", sm.stage_prefix}};
-      if (sm.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
-        nlohmann::json cal = nlohmann::json::object();
-        for (const int p : sm.kept) cal[s.parameters[static_cast<std::size_t>(p)].path] = sm.chosen(p);
-        e["calibrated"] = cal;
-        e["converged"] = sm.converged;
-        e["confirmed"] = sm.confirmed.is_null() ? nlohmann::json::object() : sm.confirmed;
-        e["evaluations"] = sm.calibration_runs;
-      }
-      if (sm.posterior.is_object()) {
-        e["calibrated_interval"] = sm.posterior.value("calibrated_interval", nlohmann::json::object());
-        e["identified"] = sm.posterior.value("identified", nlohmann::json::object());
-      }
-      if (sm.curve.is_object() && sm.curve.contains("picked")) e["curve_picked"] = sm.curve["picked"];
-      per.push_back(e);
-    }
-    j["calibration_per_model"] = per;
-  }
-  j["tolerance"] = s.confirm.tolerance;
-  if (!st.verification.is_null()) j["verification"] = st.verification;
-  if (!st.selection.is_null()) j["model_selection"] = st.selection;
-  // A digest of the stages (the full designs and fits are in study.h5, /stages).
-  const auto& stages = store.stages();
+// A digest of the stages for summary.json (the full designs and fits are in study.h5, /stages).
+nlohmann::json stage_digest(const nlohmann::json& stages) {
   nlohmann::json digest = nlohmann::json::object();
   if (stages.contains("screen")) {
     nlohmann::json sc = {{"kept", stages["screen"]["kept"]}, {"effects", nlohmann::json::object()}};
@@ -160,17 +93,75 @@ nlohmann::json summary_of(const StudyConfig& s, const PipelineState& st, const s
     }
     digest["confirm_rounds"] = rounds;
   }
-  j["stages"] = digest;
+  return digest;
+}
+
+StudySummary summary_of(const StudyConfig& s, const PipelineState& st, const std::vector<PipelineState>& others,
+                        const StudyEvaluator& ev, const StudyStore& store, const std::string& stage_reached,
+                        const std::string& hash) {
+  StudySummary j;
+  j.schema_version = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
+  j.study = s.name;
+  j.stage_reached = stage_reached;
+  if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
+    for (std::size_t p = 0; p < s.parameters.size(); ++p) {
+      (st.is_kept(static_cast<int>(p)) ? j.calibrated : j.held_at_nominal)[s.parameters[p].path] =
+          st.chosen(static_cast<Eigen::Index>(p));
+    }
+  }
+  for (const auto& t : s.targets) j.targets[t.metric] = t.value;
+  j.confirmed = st.confirmed;
+  j.converged = st.converged;
+  j.confirmation_rounds = st.rounds;
+  // Calibration runs (stages 1-5: what the classical workflow's count compares with); the
+  // verification runs come on top.
+  j.evaluations = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
+  j.evaluations_total = ev.runs_used();
+  j.evaluations_from_store = ev.runs_reused();
+  // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations; every point runs every
+  // target's test (a joint study of two tests runs both at each point).
+  j.classical_workflow_evaluations = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
+  if (!st.solution.is_null()) j.solution_set = st.solution;
+  // The posterior (posterior_stage.cpp): 95 % credible intervals and identification, with reasons.
+  const std::string posterior_report = "the posterior stage's report";
+  if (st.posterior.is_object()) {
+    posterior_identification(st.posterior, posterior_report, &j.calibrated_interval, &j.identified);
+    j.posterior = st.posterior;
+    j.posterior.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
+  }
+  if (st.curve.is_object()) j.curve = st.curve;
+  // [verify] calibrate_each_model: every model's own calibration, the first's as above.
+  if (s.verify.calibrate_each_model && s.models.size() > 1) {
+    for (std::size_t m = 0; m < s.models.size(); ++m) {
+      const PipelineState& sm = m == 0 ? st : others[m];
+      ModelCalibration e;
+      e.model = s.models[m].name;
+      e.stage_prefix = sm.stage_prefix;
+      if (sm.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
+        e.calibrated_yet = true;
+        for (const int p : sm.kept) e.calibrated[s.parameters[static_cast<std::size_t>(p)].path] = sm.chosen(p);
+        e.converged = sm.converged;
+        e.confirmed = sm.confirmed;
+        e.evaluations = sm.calibration_runs;
+      }
+      if (sm.posterior.is_object()) {
+        posterior_identification(sm.posterior, posterior_report, &e.calibrated_interval.emplace(), &e.identified.emplace());
+      }
+      if (sm.curve.is_object() && sm.curve.contains("picked")) e.curve_picked = sm.curve["picked"];
+      j.calibration_per_model.push_back(std::move(e));
+    }
+  }
+  j.tolerance = s.confirm.tolerance;
+  j.verification = st.verification;
+  j.model_selection = st.selection;
+  j.stages = stage_digest(store.stages());
   const double cpu = ev.calibration_cpu_seconds(), cpu_verify = ev.verification_cpu_seconds();
-  j["cpu_seconds"] = cpu + cpu_verify;
-  j["calibration_cpu_seconds"] = cpu;
-  j["verification_cpu_seconds"] = cpu_verify;
-  double wall = 0.0;
+  j.cpu_seconds = cpu + cpu_verify;
+  j.calibration_cpu_seconds = cpu;
+  j.verification_cpu_seconds = cpu_verify;
   if (store.stages().contains("sessions"))
-    for (const auto& x : store.stages()["sessions"]) wall += x.value("wall_seconds", 0.0);
-  j["wall_seconds"] = wall;
-  j["provenance"] = {{"seedcal_version", version_string()}, {"study_file", s.file}, {"seed", s.seed},
-                     {"config_hash", hash}, {"config", s.text}};
+    for (const auto& x : store.stages()["sessions"]) j.wall_seconds += x.value("wall_seconds", 0.0);
+  j.provenance = {version_string(), s.file, hash, s.text, s.seed};
   return j;
 }
 
@@ -302,7 +293,7 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
   auto checkpoint = [&](const std::string& stage) {
     sessions[session]["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     store.set_stage("sessions", sessions);
-    const nlohmann::json j = summary_of(s, st, others, ev, store, stage, hash);
+    const nlohmann::json j = to_json(summary_of(s, st, others, ev, store, stage, hash));
     write_json_atomic(o.out_dir + "/summary.json", j);
     return j;
   };

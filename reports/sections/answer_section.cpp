@@ -10,22 +10,21 @@
 namespace seedcal::reports {
 
 void add_answer_section(const StudyData& d, Document& doc) {
-  const auto& j = d.summary;
-  if (j.empty()) return;
+  if (!d.summary) return;
+  const StudySummary& j = *d.summary;
   Section s{"answer", "The answer", {}};
-  const auto& calibrated = member(j, "calibrated");
-  const auto& interval = member(j, "calibrated_interval");
-  const auto& identified = member(j, "identified");
-  const auto& posterior = member(j, "posterior");
+  const auto& interval = j.calibrated_interval;
+  const auto& identified = j.identified;
+  const auto& posterior = j.posterior;
   Table cal{"answer_parameters", "Calibrated values, their 95 % credible intervals and whether the data identify them",
             {"parameter", "calibrated", "95 % interval", "identified", "why"}, {}, {}};
-  for (const auto& [p, v] : calibrated.items()) {
+  for (const auto& [p, v] : j.calibrated) {
     std::string iv = "n/a";
-    if (interval.contains(p) && interval[p].is_array() && interval[p].size() == 2)
-      iv = format_value(interval[p][0]) + " .. " + format_value(interval[p][1]);
+    if (const auto it = interval.find(p); it != interval.end())
+      iv = format_value(it->second[0]) + " .. " + format_value(it->second[1]);
     std::string why = member(posterior, "reasons").contains(p) ? format_value(member(posterior, "reasons")[p]) : "";
     if (member(posterior, "at_edge").contains(p)) why += "; the calibrated value lies " + format_value(member(posterior, "at_edge")[p]);
-    cal.add_row({p, format_value(v), iv, identified.contains(p) ? format_value(identified[p]) : "n/a", why});
+    cal.add_row({p, format_value(v), iv, identified.count(p) ? format_value(identified.at(p)) : "n/a", why});
   }
   if (!cal.rows.empty()) {
     for (const auto& t : member(posterior, "targets"))
@@ -34,7 +33,7 @@ void add_answer_section(const StudyData& d, Document& doc) {
                           format_value(t.value("run_noise_sd", nlohmann::json())) + " from " +
                           format_value(t.value("run_noise_source", nlohmann::json())) + ".");
     s.table(std::move(cal));
-    const auto& curve = member(j, "curve");
+    const auto& curve = j.curve;
     if (!curve.empty() && !curve.contains("skipped")) {
       std::string picked;
       for (const auto& [name, v] : member(curve, "picked").items()) picked += (picked.empty() ? "" : ", ") + name + " " + format_value(v);
@@ -44,14 +43,17 @@ void add_answer_section(const StudyData& d, Document& doc) {
                   "; the intervals above combine the target with that test (section \"The point on the solution curve\").");
     }
   } else {
-    s.note("No calibrated values yet (the study stopped at stage " + j.value("stage_reached", std::string("?")) + ").");
+    s.note("No calibrated values yet (the study stopped at stage " + (j.stage_reached.empty() ? "?" : j.stage_reached) + ").");
   }
 
   Table lab{"answer_tests", "Against the laboratory", {"test", "role", "simulated mean", "sd", "laboratory", "relative error"}, {}, {}};
-  for (const auto& [metric, m] : member(j, "confirmed").items())
-    lab.add_row({metric, "target (confirmation)", format_value(m.value("mean", nlohmann::json())), format_value(m.value("sd", nlohmann::json())),
-                 format_value(m.value("target", nlohmann::json())), format_percent(m.value("rel_error", nlohmann::json()))});
-  for (const auto& t : member(member(j, "verification"), "tests")) {
+  for (const auto& [metric, m] : j.confirmed) {
+    const nlohmann::json none;
+    lab.add_row({metric, "target (confirmation)", format_value(m.stats ? nlohmann::json(m.stats->mean) : none),
+                 format_value(m.stats ? nlohmann::json(m.stats->sd) : none), format_value(m.target),
+                 format_percent(m.stats ? nlohmann::json(m.stats->rel_error) : none)});
+  }
+  for (const auto& t : member(j.verification, "tests")) {
     if (t.value("role", std::string()) == "target") continue;
     std::string lab_value = format_value(t.value("experimental_mean", nlohmann::json()));
     if (!t.value("experimental_sd", nlohmann::json()).is_null()) lab_value += " (sd " + format_value(t["experimental_sd"]) + ")";
@@ -60,7 +62,7 @@ void add_answer_section(const StudyData& d, Document& doc) {
   }
   if (!lab.rows.empty()) s.table(std::move(lab));
 
-  const auto& sel = member(j, "model_selection");
+  const auto& sel = j.model_selection;
   if (!sel.empty() && !sel.value("chosen", nlohmann::json()).is_null()) {
     std::string text = "Chosen clump model: " + format_value(sel["chosen"]);
     if (!sel.value("most_accurate", nlohmann::json()).is_null() && sel["most_accurate"] != sel["chosen"])

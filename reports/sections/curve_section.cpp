@@ -7,8 +7,8 @@
 namespace seedcal::reports {
 
 void add_curve_section(const StudyData& d, Document& doc) {
-  const auto& c = member(d.summary, "curve");
-  if (c.empty()) return;
+  if (!d.summary || !d.summary->curve.is_object() || d.summary->curve.empty()) return;
+  const nlohmann::json& c = d.summary->curve;
   Section s{"curve", "The point on the solution curve", {}};
   if (c.contains("skipped")) {
     s.paragraph("Not run: " + format_value(c["skipped"]) + ".");

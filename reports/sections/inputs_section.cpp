@@ -1,6 +1,8 @@
 // Study inputs: provenance (study file, seed, version, fingerprint), the parameters with their
 // ranges and the targets as the study file gives them (read back from the store's copy of the
 // file, so the report needs nothing but the study directory), the tolerance, and the file itself.
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <toml.hpp>
@@ -66,27 +68,27 @@ bool add_study_tables(const std::string& text, const StudyData& d, Section& s) {
 
 void add_inputs_section(const StudyData& d, Document& doc) {
   Section s{"inputs", "Study inputs", {}};
-  const nlohmann::json prov = d.summary.value("provenance", nlohmann::json::object());
+  const SummaryProvenance prov = d.summary ? d.summary->provenance : SummaryProvenance{};
   Table t{"study", "Study", {"item", "value"}, {}, {}};
   auto row = [&t](const std::string& k, const std::string& v) {
     if (!v.empty()) t.add_row({k, v});
   };
-  row("study", d.summary.value("study", std::string()));
-  row("study file", prov.value("study_file", std::string()));
-  if (prov.contains("seed")) row("seed", format_value(prov["seed"]));
+  row("study", d.summary ? d.summary->study : std::string());
+  row("study file", prov.study_file);
+  if (d.summary) row("seed", std::to_string(prov.seed));
   row("seedcal version (store)", d.header.seedcal_version);
-  row("seedcal version (summary)", prov.value("seedcal_version", std::string()));
-  row("config hash", d.has_store ? d.header.config_hash : prov.value("config_hash", std::string()));
+  row("seedcal version (summary)", prov.seedcal_version);
+  row("config hash", d.has_store ? d.header.config_hash : prov.config_hash);
   row("store created (UTC)", d.header.created_utc);
   const auto* confirm = d.stage("confirm");
-  const nlohmann::json& tol = d.summary.contains("tolerance") ? d.summary["tolerance"] : confirm ? member(*confirm, "tolerance") : member(d.summary, "");
-  if (tol.is_number()) row("tolerance (relative error)", format_number(100.0 * tol.get<double>()) + " %");
+  const double tol = d.summary && std::isfinite(d.summary->tolerance) ? d.summary->tolerance : confirm ? as_number(member(*confirm, "tolerance")) : std::numeric_limits<double>::quiet_NaN();
+  if (std::isfinite(tol)) row("tolerance (relative error)", format_number(100.0 * tol) + " %");
   if (confirm && confirm->contains("budget")) row("budget of DEM runs", format_value((*confirm)["budget"]));
   if (const auto* screen = d.stage("screen"); screen && screen->contains("alpha"))
     row("screening significance level", format_value((*screen)["alpha"]));
   if (!t.rows.empty()) s.table(std::move(t));
 
-  const std::string text = d.has_store ? d.header.config_text : prov.value("config", std::string());
+  const std::string text = d.has_store ? d.header.config_text : prov.config;
   if (!text.empty()) {
     if (!add_study_tables(text, d, s)) s.note("The stored study file text could not be parsed: parameters and targets are shown in the file below only");
     s.preformatted("Study file (as stored, after --set overrides)", text);

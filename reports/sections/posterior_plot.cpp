@@ -44,8 +44,8 @@ void add_posterior_plot_section(const StudyData& d, Document& doc) {
     for (const auto& c : sol.value("curve", nlohmann::json::array()))
       curve.push_back({as_number(c.value(names[0], nlohmann::json())), as_number(c.value(names[1], nlohmann::json()))});
   }
-  const auto& cal = member(d.summary, "calibrated");
-  if (cal.contains(names[0]) && cal.contains(names[1])) chosen.push_back({as_number(cal[names[0]]), as_number(cal[names[1]])});
+  if (d.summary && d.summary->calibrated.count(names[0]) && d.summary->calibrated.count(names[1]))
+    chosen.push_back({d.summary->calibrated.at(names[0]), d.summary->calibrated.at(names[1])});
   p.add_data("curve.dat", curve);
   p.add_data("chosen.dat", chosen);
   const double threshold = as_number(g.value("hpd95_threshold", nlohmann::json()));

@@ -74,7 +74,7 @@ void add_verification(const nlohmann::json& v, Document& doc) {
   doc.sections.push_back(std::move(s));
 }
 
-void add_selection(const nlohmann::json& m, const nlohmann::json& per, Document& doc) {
+void add_selection(const nlohmann::json& m, const std::vector<ModelCalibration>& per, Document& doc) {
   Section s{"model-selection", "Model selection", {}};
   s.paragraph("Chosen: " + format_value(m.value("chosen", nlohmann::json())) + ". Rule: " + format_value(m.value("rule", nlohmann::json())) + ".");
   if (m.contains("note")) s.note(format_value(m["note"]));
@@ -139,16 +139,16 @@ void add_selection(const nlohmann::json& m, const nlohmann::json& per, Document&
   s.table(std::move(t));
   if (!by_model.rows.empty()) s.table(std::move(by_model));
   // [verify] calibrate_each_model: each model's own calibration.
-  if (per.is_array() && !per.empty()) {
+  if (!per.empty()) {
     Table c{"calibration_per_model", "Each model calibrated under its own overrides ([verify] calibrate_each_model)",
             {"model", "parameter", "calibrated", "95 % interval", "identified", "converged", "DEM runs"}, {}, {}};
-    for (const auto& e : per) {
-      for (const auto& [path, v] : member(e, "calibrated").items()) {
-        const auto& iv = member(member(e, "calibrated_interval"), path);
-        c.add_row({format_value(e.value("model", nlohmann::json())), std::string(path), format_value(v),
-                   iv.is_array() && iv.size() == 2 ? format_value(iv[0]) + " .. " + format_value(iv[1]) : std::string("n/a"),
-                   format_value(member(e, "identified").value(path, nlohmann::json())), format_value(e.value("converged", nlohmann::json())),
-                   format_value(e.value("evaluations", nlohmann::json()))});
+    for (const ModelCalibration& e : per) {
+      for (const auto& [path, v] : e.calibrated) {
+        std::string iv = "n/a", identified = "n/a";
+        if (e.calibrated_interval && e.calibrated_interval->count(path))
+          iv = format_value(e.calibrated_interval->at(path)[0]) + " .. " + format_value(e.calibrated_interval->at(path)[1]);
+        if (e.identified && e.identified->count(path)) identified = format_value(e.identified->at(path));
+        c.add_row({e.model, path, format_value(v), iv, identified, format_value(e.converged), format_value(e.evaluations)});
       }
     }
     s.table(std::move(c));
@@ -181,8 +181,9 @@ void add_selection(const nlohmann::json& m, const nlohmann::json& per, Document&
 }  // namespace
 
 void add_verification_sections(const StudyData& d, Document& doc) {
-  if (d.summary.contains("verification") && d.summary["verification"].is_object()) add_verification(d.summary["verification"], doc);
-  if (d.summary.contains("model_selection") && d.summary["model_selection"].is_object()) add_selection(d.summary["model_selection"], member(d.summary, "calibration_per_model"), doc);
+  if (!d.summary) return;
+  if (d.summary->verification.is_object()) add_verification(d.summary->verification, doc);
+  if (d.summary->model_selection.is_object()) add_selection(d.summary->model_selection, d.summary->calibration_per_model, doc);
 }
 
 }  // namespace seedcal::reports

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "solver/scenes/settle.hpp"
+#include "solver/sim/settle.hpp"
 #include "solver/walls/box_shape.hpp"
 
 namespace seedcal {

@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "solver/scenes/settle.hpp"
+#include "solver/sim/settle.hpp"
 #include "solver/walls/motion_laws.hpp"
 
 namespace seedcal {

@@ -8,7 +8,7 @@
 #include <numbers>
 #include <string>
 
-#include "solver/scenes/settle.hpp"
+#include "solver/sim/settle.hpp"
 #include "solver/walls/cylinder_shape.hpp"
 #include "solver/walls/motion_laws.hpp"
 #include "solver/walls/servo_wall.hpp"

@@ -5,7 +5,7 @@
 #include <limits>
 #include <numbers>
 
-#include "solver/scenes/settle.hpp"
+#include "solver/sim/settle.hpp"
 #include "solver/walls/cylinder_shape.hpp"
 #include "solver/walls/mesh_shape.hpp"
 #include "solver/walls/motion_laws.hpp"

@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "solver/scenes/settle.hpp"
+#include "solver/sim/settle.hpp"
 #include "solver/sim/particle_factory.hpp"
 #include "solver/walls/cylinder_shape.hpp"
 #include "solver/walls/servo_wall.hpp"

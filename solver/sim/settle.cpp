@@ -1,4 +1,4 @@
-#include "solver/scenes/settle.hpp"
+#include "solver/sim/settle.hpp"
 
 #include <algorithm>
 #include <cmath>
