@@ -6,16 +6,22 @@
 // pair, and the ordering makes the list (and so every result) independent of the thread count.
 // History (tangential spring, rolling spring) is carried across rebuilds by a linear merge on the
 // same key. The list is rebuilt only when some sphere moved more than half the skin.
+//
+// Candidates come from a cell grid of the spheres, or, when bodies hold many spheres, in two
+// levels: the bodies whose bounding spheres come within the skin, then the sphere pairs of each
+// such body pair that lie near the other body (the same list either way).
 #include <cstdint>
 #include <vector>
 
 #include "solver/broadphase/cell_grid.hpp"
+#include "solver/broadphase/pair_search.hpp"
 #include "solver/core/body_state.hpp"
 
 namespace seedcal {
 
 class VerletList {
  public:
+  void set_search(PairSearch s) { search_ = s; }
   // `keep_rolling`: allocate rolling-spring history (EPSD only). The result does not depend on
   // `threads` (chunks are concatenated in body order).
   void build(const SphereState& spheres, double skin_m, bool keep_rolling, int threads = 1);
@@ -46,7 +52,17 @@ class VerletList {
   double rebuild_distance_sq() const { return 0.25 * skin_m_ * skin_m_; }
 
  private:
-  CellGrid grid_;
+  CellGrid grid_;  // of the spheres, or of the bodies' bounding spheres (two-level search)
+  // Two-level search (many spheres per body): each body's bounding sphere and first sphere.
+  std::vector<Vec3> body_centre_;
+  std::vector<double> body_radius_;
+  std::vector<std::uint32_t> body_first_;
+  void bound_bodies(const SphereState& spheres, std::size_t bodies);
+  // Body bi's pairs (its spheres s .. e) with the bodies after it, appended in list order.
+  void list_pairs_two_level(const SphereState& spheres, std::uint32_t bi, std::size_t s, std::size_t e, double skin_m,
+                            std::vector<std::uint32_t>& near, std::vector<std::uint32_t>& in_i,
+                            std::vector<std::uint32_t>& in_j, std::vector<std::uint32_t>& out_si,
+                            std::vector<std::uint32_t>& out_sj, std::vector<std::uint32_t>& group_sizes) const;
   std::vector<std::uint32_t> si_, sj_, group_start_;
   std::vector<Vec3> tangential_, rolling_;
   std::vector<std::uint8_t> live_;
@@ -54,6 +70,7 @@ class VerletList {
   void mark_live();
   double skin_m_ = 0.0;
   std::size_t builds_ = 0;
+  PairSearch search_ = PairSearch::automatic;
 };
 
 }  // namespace seedcal

@@ -76,28 +76,45 @@ BenchSpec clump_bed_spec(std::vector<SphereXYZR> clump) {
   BenchSpec s;
   s.name = "clump-bed";
   s.clump = std::move(clump);
+  s.bodies = 1000;
+  s.region_lo_m = Vec3(0.006, 0.006, 0.006);
+  s.region_hi_m = Vec3(0.094, 0.094, 0.294);
   s.settle_steps = 100000;
   return s;
 }
 
+BenchSpec fine_clump_bed_spec(std::vector<SphereXYZR> clump) {
+  BenchSpec s;
+  s.name = "fine-clump-bed";
+  s.clump = std::move(clump);
+  s.bodies = 100;
+  s.box_xy_m = 0.05;
+  s.region_lo_m = Vec3(0.006, 0.006, 0.006);
+  s.region_hi_m = Vec3(0.044, 0.044, 0.144);
+  s.settle_dt_s = 2.5e-6;
+  s.settle_steps = 160000;
+  return s;
+}
+
 BenchResult run_bench(const BenchSpec& spec) {
-  const bool clumps = spec.name == "clump-bed";
+  const bool clumps = !spec.clump.empty();
   const Material seed{"seed", 1340.0, 1.65e8, 0.4};
   const InteractionTable table({seed}, {Interaction{"seed_seed", 0, 0, 0.45, 0.55, 0.05}});
   SimulationOptions opt;
   opt.contact.normal = NormalModel::hertz_mindlin;
   opt.contact.rolling = RollingModel::cdt;
-  opt.dt_s = 5e-6;
+  opt.dt_s = spec.settle_dt_s;
   opt.skin_m = 0.0004;
   opt.profile = true;  // four clock reads per step: negligible against a 10,000-sphere step
   opt.threads = spec.threads;
   opt.seed = spec.seed;
   opt.simd_lanes = spec.simd_lanes;
+  opt.pair_search = spec.pair_search;
   Simulation sim(table, opt);
   BodyDef tpl = clumps ? clump_body(spec.clump, seed.density_kg_m3, 0) : sphere_body(0.002, seed.density_kg_m3, 0);
-  const Vec3 lo = clumps ? Vec3(0.006, 0.006, 0.006) : Vec3(0.0025, 0.0025, 0.0025);
-  const Vec3 hi = clumps ? Vec3(0.094, 0.094, 0.294) : Vec3(0.0975, 0.0975, 0.1975);
-  const std::size_t want = clumps ? 1000 : 10000;
+  const Vec3 lo = spec.region_lo_m, hi = spec.region_hi_m;
+  const std::size_t want = spec.bodies;
+  const double side = spec.box_xy_m;
   BenchResult res;
   res.kernel_lanes = pair_batch_lanes_used(spec.simd_lanes);
   // As the decks' insert/pack: random non-overlapping poses, all inside the region.
@@ -112,9 +129,9 @@ BenchResult run_bench(const BenchSpec& spec) {
   if (!placed.complete) res.failure = placed.stop_reason;
   sim.add_wall(plane(Vec3::Zero(), Vec3::UnitZ()));
   sim.add_wall(plane(Vec3::Zero(), Vec3::UnitX()));
-  sim.add_wall(plane(Vec3(0.1, 0, 0), -Vec3::UnitX()));
+  sim.add_wall(plane(Vec3(side, 0, 0), -Vec3::UnitX()));
   sim.add_wall(plane(Vec3::Zero(), Vec3::UnitY()));
-  sim.add_wall(plane(Vec3(0, 0.1, 0), -Vec3::UnitY()));
+  sim.add_wall(plane(Vec3(0, side, 0), -Vec3::UnitY()));
 
   auto t0 = std::chrono::steady_clock::now();
   if (!sim.run(spec.settle_steps)) res.failure = sim.failure().message;

@@ -152,6 +152,7 @@ void Simulation::ensure_ready() {
   double r_max = 0.0;
   for (double r : spheres_.radius_m) r_max = std::max(r_max, r);
   contacts_.skin_m = options_.skin_m > 0.0 ? options_.skin_m : 0.2 * r_max;
+  contacts_.pairs.set_search(options_.pair_search);
   threads_.size(options_.threads, bodies_.size(), walls_.size());
   place_spheres(bodies_, spheres_, options_.threads);
   rebuild_lists();

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "solver/broadphase/pair_search.hpp"
 #include "solver/contact/contact_model.hpp"
 #include "solver/core/vec.hpp"
 #include "solver/sim/guards.hpp"
@@ -46,6 +47,9 @@ struct SimulationOptions {
   // (AVX2) or 1, the widest the CPU runs (sim/pair_batch.hpp); the results are the same bits at
   // any width.
   int simd_lanes = 8;
+  // How the neighbour list finds its candidates (broadphase/pair_search.hpp): the same list, so
+  // the same bits, whichever way; only the speed differs.
+  PairSearch pair_search = PairSearch::automatic;
   FrameObserver observer;
 };
 
