@@ -99,37 +99,37 @@ nlohmann::json stage_digest(const nlohmann::json& stages) {
 StudySummary summary_of(const StudyConfig& s, const PipelineState& st, const std::vector<PipelineState>& others,
                         const StudyEvaluator& ev, const StudyStore& store, const std::string& stage_reached,
                         const std::string& hash) {
-  StudySummary j;
-  j.schema_version = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
-  j.study = s.name;
-  j.stage_reached = stage_reached;
+  StudySummary out;
+  out.schema_version = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
+  out.study = s.name;
+  out.stage_reached = stage_reached;
   if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
     for (std::size_t p = 0; p < s.parameters.size(); ++p) {
-      (st.is_kept(static_cast<int>(p)) ? j.calibrated : j.held_at_nominal)[s.parameters[p].path] =
+      (st.is_kept(static_cast<int>(p)) ? out.calibrated : out.held_at_nominal)[s.parameters[p].path] =
           st.chosen(static_cast<Eigen::Index>(p));
     }
   }
-  for (const auto& t : s.targets) j.targets[t.metric] = t.value;
-  j.confirmed = st.confirmed;
-  j.converged = st.converged;
-  j.confirmation_rounds = st.rounds;
+  for (const auto& t : s.targets) out.targets[t.metric] = t.value;
+  out.confirmed = st.confirmed;
+  out.converged = st.converged;
+  out.confirmation_rounds = st.rounds;
   // Calibration runs (stages 1-5: what the classical workflow's count compares with); the
   // verification runs come on top.
-  j.evaluations = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
-  j.evaluations_total = ev.runs_used();
-  j.evaluations_from_store = ev.runs_reused();
+  out.evaluations = st.calibration_runs >= 0 ? st.calibration_runs : ev.runs_used();
+  out.evaluations_total = ev.runs_used();
+  out.evaluations_from_store = ev.runs_reused();
   // PB + ~5 path points + 13-run CCD, x3 replicates, + 3 confirmations; every point runs every
   // target's test (a joint study of two tests runs both at each point).
-  j.classical_workflow_evaluations = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
-  if (!st.solution.is_null()) j.solution_set = st.solution;
+  out.classical_workflow_evaluations = (3 * (s.screen.runs + 5 + 13) + 3) * static_cast<int>(s.targets.size());
+  if (!st.solution.is_null()) out.solution_set = st.solution;
   // The posterior (posterior_stage.cpp): 95 % credible intervals and identification, with reasons.
   const std::string posterior_report = "the posterior stage's report";
   if (st.posterior.is_object()) {
-    posterior_identification(st.posterior, posterior_report, &j.calibrated_interval, &j.identified);
-    j.posterior = st.posterior;
-    j.posterior.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
+    posterior_identification(st.posterior, posterior_report, &out.calibrated_interval, &out.identified);
+    out.posterior = st.posterior;
+    out.posterior.erase("region_grid");  // in study.h5 (/stages/posterior) and the report
   }
-  if (st.curve.is_object()) j.curve = st.curve;
+  if (st.curve.is_object()) out.curve = st.curve;
   // [verify] calibrate_each_model: every model's own calibration, the first's as above.
   if (s.verify.calibrate_each_model && s.models.size() > 1) {
     for (std::size_t m = 0; m < s.models.size(); ++m) {
@@ -148,21 +148,21 @@ StudySummary summary_of(const StudyConfig& s, const PipelineState& st, const std
         posterior_identification(sm.posterior, posterior_report, &e.calibrated_interval.emplace(), &e.identified.emplace());
       }
       if (sm.curve.is_object() && sm.curve.contains("picked")) e.curve_picked = sm.curve["picked"];
-      j.calibration_per_model.push_back(std::move(e));
+      out.calibration_per_model.push_back(std::move(e));
     }
   }
-  j.tolerance = s.confirm.tolerance;
-  j.verification = st.verification;
-  j.model_selection = st.selection;
-  j.stages = stage_digest(store.stages());
+  out.tolerance = s.confirm.tolerance;
+  out.verification = st.verification;
+  out.model_selection = st.selection;
+  out.stages = stage_digest(store.stages());
   const double cpu = ev.calibration_cpu_seconds(), cpu_verify = ev.verification_cpu_seconds();
-  j.cpu_seconds = cpu + cpu_verify;
-  j.calibration_cpu_seconds = cpu;
-  j.verification_cpu_seconds = cpu_verify;
+  out.cpu_seconds = cpu + cpu_verify;
+  out.calibration_cpu_seconds = cpu;
+  out.verification_cpu_seconds = cpu_verify;
   if (store.stages().contains("sessions"))
-    for (const auto& x : store.stages()["sessions"]) j.wall_seconds += x.value("wall_seconds", 0.0);
-  j.provenance = {version_string(), s.file, hash, s.text, s.seed};
-  return j;
+    for (const auto& x : store.stages()["sessions"]) out.wall_seconds += x.value("wall_seconds", 0.0);
+  out.provenance = {version_string(), s.file, hash, s.text, s.seed};
+  return out;
 }
 
 // The report (reports/, docs/reports.md), when the caller renders one: study.h5 and summary.json
