@@ -205,8 +205,10 @@ bool Simulation::step() {
   const int nt = std::max(1, options_.threads);
   update_work_shares();
   const std::vector<WorkShare>& shares = threads_.shares;
-  const bool sort_due = options_.sort_interval_steps > 0 &&
-                        (step_ + 1) % options_.sort_interval_steps == 0 && nb >= 512;
+  // Small worlds stay in the cache unsorted; a world of few bodies with many spheres each (fine
+  // clumps) is sorted too, so that each thread's slab holds its own bodies.
+  const bool sort_due = options_.sort_interval_steps > 0 && (step_ + 1) % options_.sort_interval_steps == 0 &&
+                        (nb >= 512 || ns >= 8192);
   // The previous step's second half kick, when pending, with that step's dt (finish_kick()).
   VerletPass pass;
   pass.dt_s = dt;

@@ -40,7 +40,8 @@ struct SimulationOptions {
   bool profile = false;              // accumulate wall time per phase of the step (StepProfile)
   // Re-sort bodies (and their spheres) along a space-filling curve every this many steps, so
   // neighbours are near in memory (0: never), within one slab of the bed per thread (the order,
-  // and so the bits, depend on `threads`). Worlds under 512 bodies are never sorted.
+  // and so the bits, depend on `threads`). Worlds under 512 bodies and 8,192 spheres are never
+  // sorted.
   std::uint64_t sort_interval_steps = 1000;
   std::uint64_t seed = 0;
   // Compute sphere-sphere and sphere-wall contacts this many at a time at most: 8 (AVX-512F), 4
