@@ -80,6 +80,7 @@ void add_bench_command(CLI::App& app, GlobalOptions& g) {
                      {"wall_seconds", r.wall_seconds},
                      {"settle_wall_seconds", r.settle_wall_seconds},
                      {"contacts_per_sphere", r.contacts_per_sphere},
+                     {"kinetic_energy_j", r.kinetic_energy_j},
                      {"neighbour_builds", r.neighbour_builds},
                      {"bodies_across_threads", r.bodies_across_threads},
                      {"threads", spec.threads},
