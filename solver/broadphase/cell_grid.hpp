@@ -2,6 +2,7 @@
 // Uniform cell list over the spheres' bounding box: spheres sorted by cell with a counting sort,
 // so the spheres of one cell are contiguous. Cell edge >= the largest sphere diameter plus the
 // Verlet skin, so every pair that can come within the skin lies in adjacent cells.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -24,6 +25,18 @@ class CellGrid {
   const std::vector<std::uint32_t>& sorted() const { return sorted_; }
   const std::vector<std::uint32_t>& start() const { return start_; }
   const std::vector<int>& cell_index() const { return cell_index_; }
+  // Calls f(index) for every entry binned in the cell of p and in its neighbours inside the grid
+  // (up to 27 cells, z outermost, then y, then x).
+  template <class F>
+  void for_each_near(const Vec3& p, F&& f) const {
+    const std::array<int, 3> c = cell_of(p);
+    for (int z = std::max(0, c[2] - 1); z <= std::min(dims_[2] - 1, c[2] + 1); ++z)
+      for (int y = std::max(0, c[1] - 1); y <= std::min(dims_[1] - 1, c[1] + 1); ++y)
+        for (int x = std::max(0, c[0] - 1); x <= std::min(dims_[0] - 1, c[0] + 1); ++x) {
+          const auto cell = static_cast<std::size_t>(linear(x, y, z));
+          for (std::uint32_t k = start_[cell]; k < start_[cell + 1]; ++k) f(sorted_[k]);
+        }
+  }
 
  private:
   Vec3 lo_ = Vec3::Zero();

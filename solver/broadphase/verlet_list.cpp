@@ -21,6 +21,88 @@ struct Chunk {
   std::vector<std::uint32_t> si, sj, group_sizes;
 };
 
+// The bodies' bounding spheres: centre the mean of a body's sphere centres, radius the farthest
+// sphere surface from it; and each body's range of spheres (a body without spheres, removed, gets
+// an empty range).
+void bound_bodies(const SphereState& spheres, std::size_t bodies, BodyBounds& out) {
+  const std::size_t n = spheres.size();
+  out.first.assign(bodies + 1, static_cast<std::uint32_t>(n));
+  out.centre_m.assign(bodies, Vec3::Zero());
+  out.radius_m.assign(bodies, 0.0);
+  for (std::size_t k = n; k-- > 0;) out.first[spheres.body[k]] = static_cast<std::uint32_t>(k);
+  for (std::size_t b = bodies; b-- > 0;)
+    if (out.first[b] == n) out.first[b] = out.first[b + 1];
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const std::size_t lo = out.first[b], hi = out.first[b + 1];
+    if (lo >= hi) continue;
+    Vec3 c = Vec3::Zero();
+    for (std::size_t k = lo; k < hi; ++k) c += spheres.position_m[k];
+    c /= static_cast<double>(hi - lo);
+    double r = 0.0;
+    for (std::size_t k = lo; k < hi; ++k) r = std::max(r, (spheres.position_m[k] - c).norm() + spheres.radius_m[k]);
+    out.centre_m[b] = c;
+    out.radius_m[b] = r;
+  }
+}
+
+struct TwoLevelScratch {
+  std::vector<std::uint32_t> near, in_i, in_j;
+};
+
+// Body bi's pairs (its spheres s .. e) with the bodies after it, appended to `out` in list order;
+// `grid` bins the bodies' bounding-sphere centres.
+//
+// Bounding sphere (c, R) of each body: a sphere pair (a of body i, b of body j) within the skin,
+// |pa - pb| < ra + rb + skin, has |pa - cj| <= |pa - pb| + |pb - cj| < ra + Rj + skin (as
+// |pb - cj| + rb <= Rj), and likewise |ci - cj| < Ri + Rj + skin: the bodies whose bounding
+// spheres come within the skin, and of them the spheres within the other body's bounding sphere
+// plus the skin, hold every pair the single-level search finds. The tests below are widened by
+// a relative 1e-9 so that rounding never drops one; the pair test itself is the single-level
+// one, in the same order (body j, then sphere i, then sphere j), so the list is the same.
+void list_pairs_two_level(const SphereState& spheres, const CellGrid& grid, const BodyBounds& bodies, std::uint32_t bi,
+                          std::size_t s, std::size_t e, double skin_m, TwoLevelScratch& w, Chunk& out) {
+  constexpr double widen = 1.0 + 1e-9;
+  const Vec3& ci = bodies.centre_m[bi];
+  const double ri = bodies.radius_m[bi];
+  w.near.clear();
+  grid.for_each_near(ci, [&](std::uint32_t bj) {
+    if (bj <= bi) return;
+    const double lim = (ri + bodies.radius_m[bj] + skin_m) * widen;
+    if ((bodies.centre_m[bj] - ci).squaredNorm() < lim * lim) w.near.push_back(bj);
+  });
+  std::sort(w.near.begin(), w.near.end());
+  for (const std::uint32_t bj : w.near) {
+    const Vec3& cj = bodies.centre_m[bj];
+    const double rj = bodies.radius_m[bj];
+    w.in_i.clear();
+    for (std::size_t a = s; a < e; ++a) {
+      const double lim = (spheres.radius_m[a] + rj + skin_m) * widen;
+      if ((spheres.position_m[a] - cj).squaredNorm() < lim * lim) w.in_i.push_back(static_cast<std::uint32_t>(a));
+    }
+    if (w.in_i.empty()) continue;
+    w.in_j.clear();
+    for (std::uint32_t b = bodies.first[bj]; b < bodies.first[bj + 1]; ++b) {
+      const double lim = (spheres.radius_m[b] + ri + skin_m) * widen;
+      if ((spheres.position_m[b] - ci).squaredNorm() < lim * lim) w.in_j.push_back(b);
+    }
+    bool open = false;
+    for (const std::uint32_t a : w.in_i) {
+      const Vec3& pa = spheres.position_m[a];
+      const double ra = spheres.radius_m[a];
+      for (const std::uint32_t b : w.in_j) {
+        const double cut = ra + spheres.radius_m[b] + skin_m;
+        if ((spheres.position_m[b] - pa).squaredNorm() < cut * cut) {
+          if (!open) out.group_sizes.push_back(0);
+          open = true;
+          ++out.group_sizes.back();
+          out.si.push_back(a);
+          out.sj.push_back(b);
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 // Spheres per body (on average) from which candidates are found body by body: a cell of the
@@ -33,24 +115,18 @@ constexpr double kTwoLevelSpheresPerBody = 4.0;
 void VerletList::build(const SphereState& spheres, double skin_m, bool keep_rolling, int threads) {
   const std::size_t n = spheres.size();
   skin_m_ = skin_m;
-  double r_max = 0.0;
-  for (double r : spheres.radius_m) r_max = std::max(r_max, r);
   const std::size_t body_count = n == 0 ? 0 : static_cast<std::size_t>(spheres.body[n - 1]) + 1;
   const bool two_level =
       body_count > 0 && (search_ == PairSearch::two_level ||
                          (search_ == PairSearch::automatic &&
                           static_cast<double>(n) >= kTwoLevelSpheresPerBody * static_cast<double>(body_count)));
-  if (two_level) {
-    bound_bodies(spheres, body_count);
-    double big = 0.0;
-    for (double r : body_radius_) big = std::max(big, r);
-    grid_.build(body_centre_, 2.0 * big + skin_m);
-  } else {
-    grid_.build(spheres.position_m, 2.0 * r_max + skin_m);
-  }
-  const auto dims = grid_.dims();
-  const auto& start = grid_.start();
-  const auto& sorted = grid_.sorted();
+  // Every pair that can come within the skin lies in adjacent cells of the grid: of the bodies'
+  // bounding spheres or of the spheres, its cell the largest diameter plus the skin.
+  if (two_level) bound_bodies(spheres, body_count, bodies_);
+  const std::vector<double>& radii = two_level ? bodies_.radius_m : spheres.radius_m;
+  double r_max = 0.0;
+  for (double r : radii) r_max = std::max(r_max, r);
+  grid_.build(two_level ? bodies_.centre_m : spheres.position_m, 2.0 * r_max + skin_m);
 
   // Spheres of one body are contiguous and bodies are ordered, so a sphere range per chunk maps
   // to a body range; chunks never split a body.
@@ -82,7 +158,7 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
     for (int c = t; c < threads; c += team) {
       Chunk& out = chunks[static_cast<std::size_t>(c)];
       std::vector<Candidate> cand;
-      std::vector<std::uint32_t> near, in_i, in_j;  // two-level scratch
+      TwoLevelScratch scratch;
       std::size_t s = bounds[static_cast<std::size_t>(c)];
       const std::size_t s_end = bounds[static_cast<std::size_t>(c) + 1];
       while (s < s_end) {
@@ -90,7 +166,7 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
         std::size_t e = s;
         while (e < s_end && spheres.body[e] == bi) ++e;
         if (two_level) {
-          list_pairs_two_level(spheres, bi, s, e, skin_m, near, in_i, in_j, out.si, out.sj, out.group_sizes);
+          list_pairs_two_level(spheres, grid_, bodies_, bi, s, e, skin_m, scratch, out);
           s = e;
           continue;
         }
@@ -98,28 +174,12 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
         for (std::size_t a = s; a < e; ++a) {
           const Vec3& pa = spheres.position_m[a];
           const double ra = spheres.radius_m[a];
-          const auto cell_a = grid_.cell_of(pa);
-          for (int dz = -1; dz <= 1; ++dz) {
-            const int z = cell_a[2] + dz;
-            if (z < 0 || z >= dims[2]) continue;
-            for (int dy = -1; dy <= 1; ++dy) {
-              const int y = cell_a[1] + dy;
-              if (y < 0 || y >= dims[1]) continue;
-              for (int dx = -1; dx <= 1; ++dx) {
-                const int x = cell_a[0] + dx;
-                if (x < 0 || x >= dims[0]) continue;
-                const int cell = grid_.linear(x, y, z);
-                for (std::uint32_t k = start[static_cast<std::size_t>(cell)];
-                     k < start[static_cast<std::size_t>(cell) + 1]; ++k) {
-                  const std::uint32_t b = sorted[k];
-                  if (spheres.body[b] <= bi) continue;
-                  const double cut = ra + spheres.radius_m[b] + skin_m;
-                  if ((spheres.position_m[b] - pa).squaredNorm() < cut * cut)
-                    cand.push_back({spheres.body[b], static_cast<std::uint32_t>(a), b});
-                }
-              }
-            }
-          }
+          grid_.for_each_near(pa, [&](std::uint32_t b) {
+            if (spheres.body[b] <= bi) return;
+            const double cut = ra + spheres.radius_m[b] + skin_m;
+            if ((spheres.position_m[b] - pa).squaredNorm() < cut * cut)
+              cand.push_back({spheres.body[b], static_cast<std::uint32_t>(a), b});
+          });
         }
         std::sort(cand.begin(), cand.end());
         for (std::size_t k = 0; k < cand.size(); ++k) {
@@ -204,88 +264,6 @@ void VerletList::build(const SphereState& spheres, double skin_m, bool keep_roll
   rolling_ = std::move(rolling);
   live_ = std::move(live);
   ++builds_;
-}
-
-void VerletList::bound_bodies(const SphereState& spheres, std::size_t bodies) {
-  const std::size_t n = spheres.size();
-  body_first_.assign(bodies + 1, static_cast<std::uint32_t>(n));
-  body_centre_.assign(bodies, Vec3::Zero());
-  body_radius_.assign(bodies, 0.0);
-  for (std::size_t k = n; k-- > 0;) body_first_[spheres.body[k]] = static_cast<std::uint32_t>(k);
-  for (std::size_t b = bodies; b-- > 0;)  // a body without spheres (removed): an empty range
-    if (body_first_[b] == n) body_first_[b] = body_first_[b + 1];
-  for (std::size_t b = 0; b < bodies; ++b) {
-    const std::size_t lo = body_first_[b], hi = body_first_[b + 1];
-    if (lo >= hi) continue;
-    Vec3 c = Vec3::Zero();
-    for (std::size_t k = lo; k < hi; ++k) c += spheres.position_m[k];
-    c /= static_cast<double>(hi - lo);
-    double r = 0.0;
-    for (std::size_t k = lo; k < hi; ++k) r = std::max(r, (spheres.position_m[k] - c).norm() + spheres.radius_m[k]);
-    body_centre_[b] = c;
-    body_radius_[b] = r;
-  }
-}
-
-void VerletList::list_pairs_two_level(const SphereState& spheres, std::uint32_t bi, std::size_t s, std::size_t e,
-                                      double skin_m, std::vector<std::uint32_t>& near, std::vector<std::uint32_t>& in_i,
-                                      std::vector<std::uint32_t>& in_j, std::vector<std::uint32_t>& out_si,
-                                      std::vector<std::uint32_t>& out_sj, std::vector<std::uint32_t>& group_sizes) const {
-  // Bounding sphere (c, R) of each body: a sphere pair (a of body i, b of body j) within the skin,
-  // |pa - pb| < ra + rb + skin, has |pa - cj| <= |pa - pb| + |pb - cj| < ra + Rj + skin (as
-  // |pb - cj| + rb <= Rj), and likewise |ci - cj| < Ri + Rj + skin: the bodies whose bounding
-  // spheres come within the skin, and of them the spheres within the other body's bounding sphere
-  // plus the skin, hold every pair the single-level search finds. The tests below are widened by
-  // a relative 1e-9 so that rounding never drops one; the pair test itself is the single-level
-  // one, in the same order (body j, then sphere i, then sphere j), so the list is the same.
-  constexpr double widen = 1.0 + 1e-9;
-  const auto dims = grid_.dims();
-  const Vec3& ci = body_centre_[bi];
-  const double ri = body_radius_[bi];
-  const auto cell_i = grid_.cell_of(ci);
-  near.clear();
-  for (int z = std::max(0, cell_i[2] - 1); z <= std::min(dims[2] - 1, cell_i[2] + 1); ++z)
-    for (int y = std::max(0, cell_i[1] - 1); y <= std::min(dims[1] - 1, cell_i[1] + 1); ++y)
-      for (int x = std::max(0, cell_i[0] - 1); x <= std::min(dims[0] - 1, cell_i[0] + 1); ++x) {
-        const auto cell = static_cast<std::size_t>(grid_.linear(x, y, z));
-        for (std::uint32_t k = grid_.start()[cell]; k < grid_.start()[cell + 1]; ++k) {
-          const std::uint32_t bj = grid_.sorted()[k];
-          if (bj <= bi) continue;
-          const double lim = (ri + body_radius_[bj] + skin_m) * widen;
-          if ((body_centre_[bj] - ci).squaredNorm() < lim * lim) near.push_back(bj);
-        }
-      }
-  std::sort(near.begin(), near.end());
-  for (const std::uint32_t bj : near) {
-    const Vec3& cj = body_centre_[bj];
-    const double rj = body_radius_[bj];
-    in_i.clear();
-    for (std::size_t a = s; a < e; ++a) {
-      const double lim = (spheres.radius_m[a] + rj + skin_m) * widen;
-      if ((spheres.position_m[a] - cj).squaredNorm() < lim * lim) in_i.push_back(static_cast<std::uint32_t>(a));
-    }
-    if (in_i.empty()) continue;
-    in_j.clear();
-    for (std::uint32_t b = body_first_[bj]; b < body_first_[bj + 1]; ++b) {
-      const double lim = (spheres.radius_m[b] + ri + skin_m) * widen;
-      if ((spheres.position_m[b] - ci).squaredNorm() < lim * lim) in_j.push_back(b);
-    }
-    bool open = false;
-    for (const std::uint32_t a : in_i) {
-      const Vec3& pa = spheres.position_m[a];
-      const double ra = spheres.radius_m[a];
-      for (const std::uint32_t b : in_j) {
-        const double cut = ra + spheres.radius_m[b] + skin_m;
-        if ((spheres.position_m[b] - pa).squaredNorm() < cut * cut) {
-          if (!open) group_sizes.push_back(0);
-          open = true;
-          ++group_sizes.back();
-          out_si.push_back(a);
-          out_sj.push_back(b);
-        }
-      }
-    }
-  }
 }
 
 void VerletList::mark_live() {

@@ -19,6 +19,13 @@
 
 namespace seedcal {
 
+// The bodies' bounding spheres and sphere ranges, for the two-level search.
+struct BodyBounds {
+  std::vector<Vec3> centre_m;
+  std::vector<double> radius_m;
+  std::vector<std::uint32_t> first;  // body b's spheres: first[b] .. first[b + 1] - 1
+};
+
 class VerletList {
  public:
   void set_search(PairSearch s) { search_ = s; }
@@ -52,17 +59,8 @@ class VerletList {
   double rebuild_distance_sq() const { return 0.25 * skin_m_ * skin_m_; }
 
  private:
-  CellGrid grid_;  // of the spheres, or of the bodies' bounding spheres (two-level search)
-  // Two-level search (many spheres per body): each body's bounding sphere and first sphere.
-  std::vector<Vec3> body_centre_;
-  std::vector<double> body_radius_;
-  std::vector<std::uint32_t> body_first_;
-  void bound_bodies(const SphereState& spheres, std::size_t bodies);
-  // Body bi's pairs (its spheres s .. e) with the bodies after it, appended in list order.
-  void list_pairs_two_level(const SphereState& spheres, std::uint32_t bi, std::size_t s, std::size_t e, double skin_m,
-                            std::vector<std::uint32_t>& near, std::vector<std::uint32_t>& in_i,
-                            std::vector<std::uint32_t>& in_j, std::vector<std::uint32_t>& out_si,
-                            std::vector<std::uint32_t>& out_sj, std::vector<std::uint32_t>& group_sizes) const;
+  CellGrid grid_;      // of the spheres, or of the bodies' bounding spheres (two-level search)
+  BodyBounds bodies_;  // two-level search: each body's bounding sphere and spheres
   std::vector<std::uint32_t> si_, sj_, group_start_;
   std::vector<Vec3> tangential_, rolling_;
   std::vector<std::uint8_t> live_;

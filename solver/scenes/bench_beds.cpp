@@ -41,24 +41,15 @@ std::size_t bodies_across_threads(const Simulation& sim, int threads) {
   for (double r : spheres.radius_m) r_max = std::max(r_max, r);
   CellGrid grid;
   grid.build(spheres.position_m, 2.0 * r_max);
-  const std::array<int, 3> dims = grid.dims();
   std::vector<char> across(bodies.size(), 0);
   for (std::size_t i = 0; i < spheres.size(); ++i) {
-    const std::array<int, 3> c = grid.cell_of(spheres.position_m[i]);
-    for (int z = std::max(0, c[2] - 1); z <= std::min(dims[2] - 1, c[2] + 1); ++z)
-      for (int y = std::max(0, c[1] - 1); y <= std::min(dims[1] - 1, c[1] + 1); ++y)
-        for (int x = std::max(0, c[0] - 1); x <= std::min(dims[0] - 1, c[0] + 1); ++x) {
-          const int cell = grid.linear(x, y, z);
-          for (std::uint32_t k = grid.start()[cell]; k < grid.start()[cell + 1]; ++k) {
-            const std::uint32_t j = grid.sorted()[k];
-            if (j <= i) continue;
-            const std::uint32_t bi = spheres.body[i], bj = spheres.body[j];
-            if (owner[bi] == owner[bj]) continue;
-            const double rs = spheres.radius_m[i] + spheres.radius_m[j];
-            if ((spheres.position_m[i] - spheres.position_m[j]).squaredNorm() < rs * rs)
-              across[bi] = across[bj] = 1;
-          }
-        }
+    grid.for_each_near(spheres.position_m[i], [&](std::uint32_t j) {
+      if (j <= i) return;
+      const std::uint32_t bi = spheres.body[i], bj = spheres.body[j];
+      if (owner[bi] == owner[bj]) return;
+      const double rs = spheres.radius_m[i] + spheres.radius_m[j];
+      if ((spheres.position_m[i] - spheres.position_m[j]).squaredNorm() < rs * rs) across[bi] = across[bj] = 1;
+    });
   }
   return static_cast<std::size_t>(std::count(across.begin(), across.end(), 1));
 }
