@@ -31,9 +31,6 @@ ExportedModel read_finished_study(const FinishedStudyOptions& o) {
   if (!fs::is_directory(o.study_dir))
     throw InputError(o.study_dir + ": no such directory (allowed: a study directory, `seedcal calibrate --out DIR`)");
   const std::string summary_path = (fs::path(o.study_dir) / "summary.json").string();
-  if (!fs::exists(summary_path))
-    throw InputError(summary_path + ": cannot open the file: a study directory holds the summary.json that `seedcal calibrate "
-                                    "STUDY.toml --out DIR` writes");
   const StudySummary summary = read_study_summary(summary_path);
   const std::string& stage = required(summary.stage_reached, summary_path, "stage_reached");
   if (stage != "done")
