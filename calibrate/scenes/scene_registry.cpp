@@ -40,6 +40,7 @@ void add_run_report(nlohmann::json& j, const RunReport& r) {
   j["dt_s"] = r.dt_s;
   j["stop_reason"] = r.stop_reason;
   j["status"] = to_string(r.failure.status);
+  j["deepest_overlap_fraction"] = r.deepest_overlap_fraction;
   if (r.failure.status != RunStatus::ok) {
     j["failure"] = {{"step", r.failure.step},
                     {"time_s", r.failure.time_s},

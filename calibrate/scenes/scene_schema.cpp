@@ -36,6 +36,9 @@ const std::vector<SchemaMetric>& run_report_metrics() {
       {"dt_s", "s", "time step"},
       {"stop_reason", "", "why the run ended"},
       {"status", "", "`ok`, or the guard that stopped the run"},
+      {"deepest_overlap_fraction", "",
+       "deepest overlap over the smaller sphere's radius where it passed half of it (beyond Hertz "
+       "theory's small-overlap range; only a clump's spheres go on past it), 0 when none did"},
       {"failure", "", "where and why a stopped run failed: step, time_s, body, message"},
       {"fidelity", "", "the rig the run used (`paper` or `quick`)"},
       {"particle", "", "the seed model: clump file or inline spheres, size distribution"},

@@ -138,6 +138,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   }
   res.rebound_height_m = phase == Phase::rising ? std::max(0.0, apex - com_at_touch) : 0.0;
   res.run.steps = run.step_count();
+  res.run.deepest_overlap_fraction = run.deepest_overlap_fraction();
   res.run.bodies = 1;
   res.run.spheres = run.spheres().size();
   res.run.dt_s = opt.dt_s;

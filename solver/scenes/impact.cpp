@@ -102,6 +102,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
     res.final_states.push_back({B.position_m[b], B.velocity_m_s[b], B.angular_velocity[b]});
   }
   res.run.steps = sim.step_count();
+  res.run.deepest_overlap_fraction = sim.deepest_overlap_fraction();
   res.run.bodies = B.size();
   res.run.spheres = sim.spheres().size();
   res.run.dt_s = opt.dt_s;

@@ -59,6 +59,7 @@ struct RunReport {
   double dt_s = 0.0;
   std::string stop_reason;
   GuardFailure failure;  // status ok unless a guard stopped the run
+  double deepest_overlap_fraction = 0.0;  // Simulation::deepest_overlap_fraction at the end
 };
 
 // CPU time of one run with `threads` OpenMP threads, s (a clock read; a run's time is the

@@ -96,6 +96,7 @@ void finish_report(RunReport& r, Simulation& sim, double cpu0_s,
     r.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
   r.failure = sim.failure();
   r.steps = sim.step_count();
+  r.deepest_overlap_fraction = sim.deepest_overlap_fraction();
   r.bodies = sim.bodies().size();
   r.spheres = sim.spheres().size();
   r.dt_s = sim.options().dt_s;

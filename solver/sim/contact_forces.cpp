@@ -10,6 +10,7 @@
 #include "solver/sim/contact_forces.hpp"
 #include "solver/sim/pair_batch.hpp"
 #include "solver/sim/contact_pipeline.hpp"
+#include "solver/sim/overlap_limits.hpp"
 #include "solver/sim/thread_plan.hpp"
 #include "solver/sim/work_split.hpp"
 
@@ -96,7 +97,7 @@ void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   else pipe.sphere_group_touch.clear();
   pipe.wall_group_touch.assign(pipe.wall_pairs.group_count(), 0);
   p.stats.assign(static_cast<std::size_t>(std::max(1, in.options.threads)), ThreadStats{});
-  for (ThreadStats& ts : p.stats) ts.ratio_limit = in.options.guards.max_overlap_fraction;
+  for (ThreadStats& ts : p.stats) ts.prefilter = overlap_prefilter_fraction(in.options.guards);
 
   const InteractionTable& table = in.table;
   const std::size_t nm = table.material_count();
@@ -135,6 +136,7 @@ void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   batch.rolling = p.rolling;
   batch.cdt_lever_from_centre_of_mass = in.options.contact.cdt_lever_from_centre_of_mass;
   batch.epsd_damping_ratio = in.options.contact.epsd_damping_ratio;
+  batch.overlap_limit_m = pipe.overlap_limit_m.data();
   p.batch_fn = choose_pair_batch(in.options.simd_lanes);
   WallBatchArgs& wall_args = p.wall_args;
   wall_args.bodies = batch.bodies;
@@ -160,6 +162,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
   const SphereView* __restrict SV = pipe.sphere_view.data();
   const std::uint32_t* __restrict SB = in.spheres.body.data();       // a sphere's body
   const std::uint16_t* __restrict SM = in.spheres.material.data();   // and material
+  const double* __restrict OL = pipe.overlap_limit_m.data();  // a sphere's deepest allowed overlap
   const BodyView* __restrict BV = pipe.body_view.data();
   const std::size_t nw = in.walls.size();
   const std::size_t nm = in.table.material_count();
@@ -220,7 +223,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     args.accumulators = reinterpret_cast<double*>(A);
     args.touched = touched;
     PairBatchStats pst;
-    pst.ratio_limit = st.ratio_limit;
+    pst.prefilter = st.prefilter;
     const std::uint32_t* __restrict GS = gs.data();
     const std::uint32_t* __restrict SI = pairs.si().data();
     const std::uint32_t* __restrict SJ = pairs.sj().data();
@@ -255,10 +258,12 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     }
     st.max_overlap = std::max(st.max_overlap, pst.max_overlap_m);
     st.max_fn = std::max(st.max_fn, pst.max_fn_n);
+    st.deepest_fraction = std::max(st.deepest_fraction, pst.deepest_fraction);
     if (pst.worst_ratio > st.worst_ratio) {
       st.worst_ratio = pst.worst_ratio;
       st.worst_body = pst.worst_body;
       st.worst_radius = pst.worst_radius_m;
+      st.worst_limit = pst.worst_limit_m;
     }
   }
 
@@ -303,7 +308,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
           Ab.torque_n_m += tau;
           Aw.torque_n_m -= tau;
         }
-        st.note(c.overlap_m, o.normal_force_n, c.radius_m, c.body);
+        st.note(c.overlap_m, o.normal_force_n, c.radius_m, OL[ws[c.pair]], c.body);
       }
       win.clear();
       wscale.clear();
@@ -376,12 +381,14 @@ ThreadStats finish_contact_pass(const ContactPass& pass) {
     total.wall_contacts += st.wall_contacts;
     total.max_overlap = std::max(total.max_overlap, st.max_overlap);
     total.max_fn = std::max(total.max_fn, st.max_fn);
+    total.deepest_fraction = std::max(total.deepest_fraction, st.deepest_fraction);
     if (st.worst_ratio > total.worst_ratio ||
         (st.worst_ratio == total.worst_ratio && st.worst_body >= 0 &&
          (total.worst_body < 0 || st.worst_body < total.worst_body))) {
       total.worst_ratio = st.worst_ratio;
       total.worst_body = st.worst_body;
       total.worst_radius = st.worst_radius;
+      total.worst_limit = st.worst_limit;
     }
   }
   return total;

@@ -37,6 +37,8 @@ struct ContactPipeline {
   // counted: HMNR or tracked contacts).
   std::vector<int> sphere_group_touch, wall_group_touch;
   std::vector<SphereView> sphere_view;
+  // Each sphere's deepest allowed overlap, m (sim/overlap_limits.hpp), set with the lists.
+  std::vector<double> overlap_limit_m;
   std::vector<BodyView> body_view;
   ContactPass pass;
   // Counts rebuilds and renumberings (ThreadPlan::update_shares).

@@ -145,11 +145,16 @@ std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
     contacts_.count_body_contacts(spheres_, nb, body_contacts_);
     for (int c : body_contacts_) stats_.max_body_contacts = std::max(stats_.max_body_contacts, c);
   }
-  if (total.worst_ratio > options_.guards.max_overlap_fraction && failure_.status == RunStatus::ok) {
+  deepest_overlap_fraction_ = std::max(deepest_overlap_fraction_, total.deepest_fraction);
+  if (total.worst_ratio > 1.0 && failure_.status == RunStatus::ok) {
     std::ostringstream m;
-    m << "overlap reached " << total.worst_ratio << " of the radius of a sphere with r = "
-      << total.worst_radius << " m (limit " << options_.guards.max_overlap_fraction
-      << "; Hertz contact assumes an overlap much smaller than the radius)";
+    const double overlap = total.worst_ratio * total.worst_limit;
+    m << "overlap reached " << overlap << " m, " << overlap / total.worst_radius
+      << " of the radius of a sphere with r = " << total.worst_radius << " m (limit "
+      << total.worst_limit << " m: " << options_.guards.max_overlap_fraction
+      << " of a lone sphere's radius or of a clump's volume-equivalent radius, at most "
+      << options_.guards.max_clump_sphere_overlap_fraction
+      << " of a clump sphere's own; Hertz contact assumes an overlap much smaller than the radius)";
     // A clump whose spheres differ much in size: a small sphere standing out of a large one
     // takes the body's whole momentum alone before the large sphere touches.
     double r_body_max = 0.0;

@@ -54,13 +54,17 @@ struct PairBatchArgs {
   RollingModel rolling = RollingModel::none;
   bool cdt_lever_from_centre_of_mass = false;
   double epsd_damping_ratio = 0.0;
+  const double* overlap_limit_m = nullptr;  // each sphere's deepest allowed overlap (guards)
 };
 
 // What ThreadStats::note() records, gathered over a batch.
 struct PairBatchStats {
   double max_overlap_m = 0.0, max_fn_n = 0.0;
-  double ratio_limit = 0.5;  // overlap / smaller radius above which a pair is recorded
-  double worst_ratio = 0.0, worst_radius_m = 0.0;
+  // Overlap / smaller radius above which a pair's limit is looked up (overlap_prefilter_fraction).
+  double prefilter = 0.5;
+  // Of the pairs past the prefilter: the largest overlap / limit (above 1 the guard trips), that
+  // pair's smaller radius and limit, and the largest overlap / smaller radius.
+  double worst_ratio = 0.0, worst_radius_m = 0.0, worst_limit_m = 0.0, deepest_fraction = 0.0;
   std::int64_t worst_body = -1;
 };
 

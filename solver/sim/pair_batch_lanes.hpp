@@ -206,19 +206,24 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     max_overlap = overlap > max_overlap ? overlap : max_overlap;
     max_fn = f.normal_force_n > max_fn ? f.normal_force_n : max_fn;
     const T r_min = ri <= rj ? ri : rj;
-    if (O::any(overlap > stats.ratio_limit * r_min)) {
+    if (O::any(overlap > stats.prefilter * r_min)) {
       alignas(64) double ov[W], r_i[W], r_j[W];
       O::store(ov, overlap);
       O::store(r_i, ri);
       O::store(r_j, rj);
       for (int l = 0; l < used; ++l) {
         const double rm = r_i[l] <= r_j[l] ? r_i[l] : r_j[l];
-        if (!(ov[l] > stats.ratio_limit * rm)) continue;
-        const double ratio = ov[l] / rm;
+        if (!(ov[l] > stats.prefilter * rm)) continue;
+        const double fraction = ov[l] / rm;
+        if (fraction > stats.deepest_fraction) stats.deepest_fraction = fraction;
+        const double li = a.overlap_limit_m[a.si[k[l]]], lj = a.overlap_limit_m[a.sj[k[l]]];
+        const double limit = li <= lj ? li : lj;
+        const double ratio = ov[l] / limit;
         if (ratio > stats.worst_ratio) {
           stats.worst_ratio = ratio;
-          stats.worst_body = r_i[l] <= r_j[l] ? bi[l] : bj[l];
+          stats.worst_body = li <= lj ? bi[l] : bj[l];
           stats.worst_radius_m = rm;
+          stats.worst_limit_m = limit;
         }
       }
     }

@@ -14,6 +14,7 @@
 
 #include "solver/integrate/velocity_verlet.hpp"
 #include "solver/sim/contact_forces.hpp"
+#include "solver/sim/overlap_limits.hpp"
 #include "solver/sim/phase_clock.hpp"
 #include "solver/sim/work_split.hpp"
 #include "solver/sim/time_step.hpp"
@@ -168,6 +169,8 @@ void Simulation::rebuild_lists() {
   // Rolling-spring history exists only for EPSD: no rolling history when it is not needed.
   contacts_.rebuild(spheres_, walls_, options_.contact.rolling == RollingModel::epsd,
                     options_.threads);
+  contacts_.overlap_limit_m =
+      sphere_overlap_limits(bodies_, spheres_, table_.materials(), options_.guards);
 }
 
 void Simulation::update_work_shares() {

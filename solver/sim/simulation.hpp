@@ -86,6 +86,11 @@ class Simulation {
   const InteractionTable& table() const { return table_; }
   const SimulationOptions& options() const { return options_; }
   const StepStats& stats() const { return stats_; }
+  // The deepest overlap of the run so far over the smaller radius of its pair (or the sphere's,
+  // at a wall), where it passed the guard's prefilter (overlap_prefilter_fraction, half the radius
+  // by default); 0 when no contact went that deep. Between that fraction and the limit a clump's
+  // sphere may take (sim/guards.hpp) the run goes on past Hertz theory's small-overlap range.
+  double deepest_overlap_fraction() const { return deepest_overlap_fraction_; }
   const std::vector<int>& body_contacts() const { return body_contacts_; }
   const GuardFailure& failure() const { return failure_; }
   const StepProfile& profile() const { return profile_; }
@@ -168,6 +173,7 @@ class Simulation {
   ContactPipeline contacts_;
   ThreadPlan threads_;
   StepStats stats_;
+  double deepest_overlap_fraction_ = 0.0;
   std::vector<int> body_contacts_;
   // CDT (contact/rolling_cdt_torque.hpp): per body, the torque per unit of capacity that
   // compute_forces() settles on (the walls take their contacts' shares of it).

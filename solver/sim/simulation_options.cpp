@@ -37,6 +37,8 @@ void validate_options(SimulationOptions& o) {
   const GuardOptions& g = o.guards;
   if (!(g.max_overlap_fraction > 0.0 && g.max_overlap_fraction <= 1.0))
     refuse("guards.max_overlap_fraction", g.max_overlap_fraction, "(0, 1]");
+  if (!(g.max_clump_sphere_overlap_fraction > 0.0 && g.max_clump_sphere_overlap_fraction <= 1.0))
+    refuse("guards.max_clump_sphere_overlap_fraction", g.max_clump_sphere_overlap_fraction, "(0, 1]");
   if (!(g.max_energy_factor > 0.0)) refuse("guards.max_energy_factor", g.max_energy_factor, "> 0");
   if (g.check_interval < 1) refuse("guards.check_interval", g.check_interval, ">= 1 step");
   if (!(o.contact.epsd_damping_ratio >= 0.0) || !std::isfinite(o.contact.epsd_damping_ratio))

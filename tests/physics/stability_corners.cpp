@@ -197,6 +197,7 @@ Outcome impact(const Corner& c, StepChoice step, double speed_m_s, double gap) {
   o.contact_time_s = r.contact_duration_s;
   o.steps_per_contact = r.run.dt_s > 0.0 ? tc / r.run.dt_s : 0.0;
   o.max_energy_ratio = ke_max / ke0;
+  o.deepest_overlap_fraction = r.run.deepest_overlap_fraction;
   if (stopped(o, r.run)) return o;
   const BodyFinalState& f = r.final_states.at(0);
   o.restitution_out = f.velocity_m_s.z() / speed_m_s;

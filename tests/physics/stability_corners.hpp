@@ -58,6 +58,7 @@ struct Outcome {
   double steps_per_contact = 0.0;    // elastic Hertz contact time (time_step.hpp) / dt_s
   std::uint64_t steps = 0;
   std::string stop_reason;
+  double deepest_overlap_fraction = 0.0;  // RunReport's: past half the smaller radius, else 0
 };
 
 // A free body may end with at most this much more energy than it had: 1 % (a correct explicit

@@ -80,7 +80,7 @@ TEST(StabilitySweep, PhysicalRangeCompletesAtDefaultStep) {
 TEST(StabilitySweep, EveryOtherParameterAtItsExtremesCompletesAtDefaultStep) {
   // Poisson 0-0.49, density 100-20,000 kg/m3, rolling friction 0-1 with CDT and EPSD, static
   // friction 0-2, on the seed clump at the stiff and the soft end of the modulus range (one
-  // combination of two extremes stops, below).
+  // combination of two extremes goes past Hertz theory's range, below).
   std::vector<Corner> corners;
   for (double E : {1e6, 1e10}) {
     auto add = [&](const std::string& name, auto set) {
@@ -102,11 +102,15 @@ TEST(StabilitySweep, EveryOtherParameterAtItsExtremesCompletesAtDefaultStep) {
   for (const Corner& c : corners) {
     const Outcome o = impact(c, {});
     if (c.youngs_modulus_pa == 1e6 && c.density_kg_m3 == 20000.0) {
-      // Soft and heavy together: Hertz theory puts the overlap of the clump's 1.75 mm spheres at
-      // 2.5 mm at 1.7 m/s (time_step.hpp), beyond the model; the guard stops it and says why.
-      EXPECT_EQ(o.verdict, Verdict::stopped) << describe(c, o);
-      EXPECT_NE(o.message.find("raise youngs_modulus_pa"), std::string::npos) << o.message;
-      continue;
+      // Soft and heavy together: Hertz theory puts the overlap of one of the clump's 1.75 mm
+      // spheres at 2.5 mm at 1.7 m/s (time_step.hpp). The seed's spheres share the impact, so no
+      // sphere's overlap passes its own radius (a clump sphere's limit, sim/guards.hpp) and the
+      // run completes within the energy bound; it reports the overlap past half a radius, where
+      // the force law is extrapolated beyond Hertz theory.
+      std::printf("%s: deepest overlap %.3f of a sphere's radius\n", c.name.c_str(),
+                  o.deepest_overlap_fraction);
+      EXPECT_GT(o.deepest_overlap_fraction, 0.5) << describe(c, o);
+      EXPECT_LE(o.deepest_overlap_fraction, 1.0) << describe(c, o);
     }
     EXPECT_EQ(o.verdict, Verdict::ok) << describe(c, o);
   }
