@@ -12,16 +12,18 @@ struct GuardOptions {
   // the usual cause is a too soft material or a too large time step. Each sphere has a limit and a
   // contact takes the smaller of its two spheres' (a wall has none):
   //  - the sphere of a one-sphere body: max_overlap_fraction of its radius;
-  //  - a sphere of a clump: max_clump_sphere_overlap_fraction of its own radius, and at most
-  //    max_overlap_fraction of its body's volume-equivalent radius. Such a sphere is a piece of the
-  //    seed's surface, not a particle: a small one at a seed's tip under a confining load (the
-  //    200 kPa shear box) carries a Hertz overlap of about half its radius while the seed as a
-  //    body deforms by a few percent of its size. Past its own radius its centre has crossed the
-  //    other surface, where a sphere contact has no geometry left (the contact point would lie
-  //    beyond the sphere's centre); up to it, the run goes on and reports its deepest overlap
-  //    (Simulation::deepest_overlap_fraction) as the reach of the force law beyond Hertz theory.
+  //  - a sphere of a clump: max_overlap_fraction of its body's volume-equivalent radius, and at
+  //    most max_clump_sphere_overlap_fraction of its own radius. Such a sphere is a piece of the
+  //    seed's surface, not a particle: the seed's own surface is curved on the scale of the seed
+  //    (an ellipsoid's), and the small spheres of a fine fill are bumps that approximate it. Under
+  //    a confining load (the 200 kPa shear box) such a bump takes an overlap of about its radius
+  //    while the seed as a body deforms by about a tenth of its size. Past twice its radius the
+  //    contact point, r - overlap / 2 from the sphere's centre, passes that centre and the
+  //    contact's lever turns around: no geometry is left. Below that the run goes on and reports
+  //    its deepest overlap (Simulation::deepest_overlap_fraction), how far the force law was
+  //    carried beyond Hertz theory's range.
   double max_overlap_fraction = 0.5;
-  double max_clump_sphere_overlap_fraction = 1.0;
+  double max_clump_sphere_overlap_fraction = 2.0;
   // Kinetic energy may not exceed this multiple of the energy the scene can supply (initial
   // kinetic + potential energy above the lowest point + work of moving walls, see simulation.cpp).
   double max_energy_factor = 10.0;

@@ -33,12 +33,13 @@ void validate_options(SimulationOptions& o) {
   if (!(o.skin_m >= 0.0) || !std::isfinite(o.skin_m)) refuse("skin_m", o.skin_m, "0 (automatic) or > 0 m");
   if (!std::isfinite(o.gravity_m_s2.sum())) refuse("gravity_m_s2", o.gravity_m_s2.norm(), "finite");
   if (o.simd_lanes < 1) refuse("simd_lanes", o.simd_lanes, "1, 4 or 8 (the widest the CPU runs)");
-  // Hertz contact means nothing past an overlap of the radius (guards.hpp).
+  // The limits of the overlap guard (guards.hpp): a lone sphere at most its radius, a clump's
+  // sphere at most twice its own (where the contact point reaches its centre).
   const GuardOptions& g = o.guards;
   if (!(g.max_overlap_fraction > 0.0 && g.max_overlap_fraction <= 1.0))
     refuse("guards.max_overlap_fraction", g.max_overlap_fraction, "(0, 1]");
-  if (!(g.max_clump_sphere_overlap_fraction > 0.0 && g.max_clump_sphere_overlap_fraction <= 1.0))
-    refuse("guards.max_clump_sphere_overlap_fraction", g.max_clump_sphere_overlap_fraction, "(0, 1]");
+  if (!(g.max_clump_sphere_overlap_fraction > 0.0 && g.max_clump_sphere_overlap_fraction <= 2.0))
+    refuse("guards.max_clump_sphere_overlap_fraction", g.max_clump_sphere_overlap_fraction, "(0, 2]");
   if (!(g.max_energy_factor > 0.0)) refuse("guards.max_energy_factor", g.max_energy_factor, "> 0");
   if (g.check_interval < 1) refuse("guards.check_interval", g.check_interval, ">= 1 step");
   if (!(o.contact.epsd_damping_ratio >= 0.0) || !std::isfinite(o.contact.epsd_damping_ratio))
