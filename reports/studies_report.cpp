@@ -132,7 +132,7 @@ void add_tradeoff(const nlohmann::json& j, Document& doc) {
   for (const auto& sw : member(j, "sweeps")) {
     const std::string param = sw.value("parameter", std::string("?"));
     Table t{"tradeoff_" + file_stem(param), "Sweep of " + param,
-            {"value", "index mean", "sd", "n", "change", "beyond 2 se", "CPU s per run", "steps per run", "speed-up", "within tolerance", "status"}, {}, {}};
+            {"value", "index mean", "sd", "n", "change", "beyond 2 se", "CPU s per run", "steps per run", "seeds", "spheres", "speed-up", "within tolerance", "status"}, {}, {}};
     for (const auto& r : member(sw, "rows")) {
       const auto& ix = member(r, "index");
       std::string status = r.value("status", std::string("ok"));
@@ -141,7 +141,8 @@ void add_tradeoff(const nlohmann::json& j, Document& doc) {
       t.add_row({format_value(r.value("value", nlohmann::json())), format_value(ix.value("mean", nlohmann::json())), format_value(ix.value("sd", nlohmann::json())),
                  format_value(ix.value("n", nlohmann::json())), format_percent(r.value("relative_change", nlohmann::json())),
                  format_value(r.value("significant", nlohmann::json())), format_value(r.value("cpu_seconds_per_run", nlohmann::json())),
-                 format_value(r.value("steps_per_run", nlohmann::json())), format_value(r.value("speedup", nlohmann::json())),
+                 format_value(r.value("steps_per_run", nlohmann::json())), format_value(r.value("seeds_per_run", nlohmann::json())),
+                 format_value(r.value("spheres_per_run", nlohmann::json())), format_value(r.value("speedup", nlohmann::json())),
                  format_value(r.value("within_tolerance", nlohmann::json())), status});
       const double x = as_number(r.value("speedup", nlohmann::json())), y = 100.0 * as_number(r.value("relative_change", nlohmann::json()));
       // Every sweep's reference sits at (1, 0): only the first is labelled, as "reference".

@@ -32,7 +32,8 @@ nlohmann::json run_row(const TradeoffOptions& o, const std::string& set, const s
   } catch (const InputError& e) {
     if (reference) throw;
     return {{"set", set}, {"index", sample_stats({})}, {"cpu_seconds_per_run", nullptr}, {"steps_per_run", nullptr},
-            {"dt_s", nullptr}, {"status", "refused"}, {"failure", {{"message", e.what()}}}};
+            {"dt_s", nullptr}, {"seeds_per_run", nullptr}, {"spheres_per_run", nullptr}, {"status", "refused"},
+            {"failure", {{"message", e.what()}}}};
   }
   if (o.progress) o.progress->scene_done(o.scene, sets, m);
   if (metric.empty()) metric = m.value("index_key", "");
@@ -40,6 +41,9 @@ nlohmann::json run_row(const TradeoffOptions& o, const std::string& set, const s
                         {"cpu_seconds_per_run", sample_stats(per_run(m, "cpu_seconds"))["mean"]},
                         {"steps_per_run", sample_stats(per_run(m, "steps"))["mean"]},
                         {"dt_s", sample_stats(per_run(m, "dt_s"))["mean"]},
+                        // The rig's size: seeds (bodies) and spheres at the end of a run.
+                        {"seeds_per_run", sample_stats(per_run(m, "bodies"))["mean"]},
+                        {"spheres_per_run", sample_stats(per_run(m, "spheres"))["mean"]},
                         {"status", m.value("status", "ok")}};
   if (m.contains("failure")) row["failure"] = m["failure"];
   return row;
@@ -205,13 +209,15 @@ std::string tradeoff_csv(const nlohmann::json& s) {
   out.precision(10);
   auto cell = [](const nlohmann::json& x) { return x.is_number() ? x.dump() : std::string("n/a"); };
   out << "parameter,value,index_mean,index_sd,n,relative_change,significant,cpu_seconds_per_run,steps_per_run,"
-         "speedup,within_tolerance,status\n";
+         "seeds_per_run,spheres_per_run,speedup,within_tolerance,status\n";
   for (const auto& sw : s["sweeps"])
     for (const auto& r : sw["rows"])
       out << sw["parameter"].get<std::string>() << "," << cell(r["value"]) << "," << cell(r["index"]["mean"]) << ","
           << cell(r["index"]["sd"]) << "," << r["index"]["n"] << "," << cell(r["relative_change"]) << ","
           << (r["significant"].is_boolean() ? (r["significant"].get<bool>() ? "yes" : "no") : "n/a") << ","
-          << cell(r["cpu_seconds_per_run"]) << "," << cell(r["steps_per_run"]) << "," << cell(r["speedup"]) << ","
+          << cell(r["cpu_seconds_per_run"]) << "," << cell(r["steps_per_run"]) << ","
+          << cell(r.value("seeds_per_run", nlohmann::json())) << ","
+          << cell(r.value("spheres_per_run", nlohmann::json())) << "," << cell(r["speedup"]) << ","
           << (r["within_tolerance"].get<bool>() ? "yes" : "no") << "," << r["status"].get<std::string>() << "\n";
   return out.str();
 }

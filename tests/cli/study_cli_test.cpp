@@ -116,6 +116,11 @@ TEST(StudyCli, TradeoffRowsMeasureCostAndChange) {
   const double steps_coarse = dt["rows"][1]["steps_per_run"].get<double>();
   EXPECT_NEAR(steps_fine / steps_coarse, 4.0, 0.6) << dt.dump(1);
   EXPECT_GT(stiff["rows"][1]["dt_s"].get<double>(), 3.0 * stiff["rows"][0]["dt_s"].get<double>()) << stiff.dump(1);
+  // The rig's size: the same container at every row, a clump of several spheres a seed.
+  for (const auto& r : dt["rows"]) {
+    EXPECT_GT(r["seeds_per_run"].get<double>(), 0.0) << r.dump(1);
+    EXPECT_GT(r["spheres_per_run"].get<double>(), r["seeds_per_run"].get<double>()) << r.dump(1);
+  }
   const std::string csv = read_text(dir + "/tradeoff.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 5) << csv;
   EXPECT_EQ(csv.find("nan"), std::string::npos) << csv;
