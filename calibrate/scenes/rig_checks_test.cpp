@@ -37,8 +37,9 @@ bool names(const std::vector<std::string>& warnings, const std::string& key) {
 }
 
 // A user's 15 mm seed (one sphere) in the Jinong 1 rigs: 4.1 lengths across the 61.8 mm shear box
-// (under 6), 1.3 lengths of sample (under 2), a 60 mm bulk container (4.0, under 5) and a drum bed
-// 33.5 mm deep (2.2, under 3); the 80 mm piling tube is 5.3 lengths (not under 5).
+// (under 6), 1.3 lengths of sample (under 2), a 60 mm bulk container (4.0, under 5; the shipped
+// quick container, 80 mm, is 5.3) and a drum bed 33.5 mm deep (2.2, under 3); the 80 mm piling
+// tube is 5.3 lengths (not under 5).
 TEST(RigChecks, ASeedTooLargeForTheRigIsNamedWithTheKeyToChange) {
   const std::string clump = (std::filesystem::temp_directory_path() / "seedcal-rig-check-15mm.txt").string();
   std::ofstream(clump) << "0.0 0.0 0.0 0.0075\n";
@@ -50,7 +51,10 @@ TEST(RigChecks, ASeedTooLargeForTheRigIsNamedWithTheKeyToChange) {
   EXPECT_NE(shear[0].find("4.1 seed lengths"), std::string::npos) << shear[0];
   EXPECT_NE(shear[0].find("ASTM D3080"), std::string::npos) << shear[0];
   EXPECT_NE(shear[0].find("raise it to at least 0.09 m"), std::string::npos) << shear[0];
-  EXPECT_TRUE(names(rig_warnings("bulk_density", big), "bulk_density.quick.container_m"));
+  const std::vector<std::string> small_box = {"fidelity=quick", "particle.clump_file=" + clump, "particle.scale_sd=0",
+                                              "bulk_density.quick.container_m=[0.06, 0.06, 0.06]"};
+  EXPECT_TRUE(names(rig_warnings("bulk_density", small_box), "bulk_density.quick.container_m"));
+  EXPECT_TRUE(rig_warnings("bulk_density", big).empty());
   EXPECT_TRUE(names(rig_warnings("drum", big), "drum.quick.filling_rate"));
   EXPECT_TRUE(rig_warnings("piling", big).empty());
   std::filesystem::remove(clump);
