@@ -216,8 +216,7 @@ std::string tradeoff_csv(const nlohmann::json& s) {
           << cell(r["index"]["sd"]) << "," << r["index"]["n"] << "," << cell(r["relative_change"]) << ","
           << (r["significant"].is_boolean() ? (r["significant"].get<bool>() ? "yes" : "no") : "n/a") << ","
           << cell(r["cpu_seconds_per_run"]) << "," << cell(r["steps_per_run"]) << ","
-          << cell(r.value("seeds_per_run", nlohmann::json())) << ","
-          << cell(r.value("spheres_per_run", nlohmann::json())) << "," << cell(r["speedup"]) << ","
+          << cell(r["seeds_per_run"]) << "," << cell(r["spheres_per_run"]) << "," << cell(r["speedup"]) << ","
           << (r["within_tolerance"].get<bool>() ? "yes" : "no") << "," << r["status"].get<std::string>() << "\n";
   return out.str();
 }

@@ -258,13 +258,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     }
     st.max_overlap = std::max(st.max_overlap, pst.max_overlap_m);
     st.max_fn = std::max(st.max_fn, pst.max_fn_n);
-    st.deepest_fraction = std::max(st.deepest_fraction, pst.deepest_fraction);
-    if (pst.worst_ratio > st.worst_ratio) {
-      st.worst_ratio = pst.worst_ratio;
-      st.worst_body = pst.worst_body;
-      st.worst_radius = pst.worst_radius_m;
-      st.worst_limit = pst.worst_limit_m;
-    }
+    st.deep.merge(pst.deep);
   }
 
   // ---- sphere-wall, one (body, wall) pair per group: the touching pairs are gathered (shape
@@ -381,15 +375,7 @@ ThreadStats finish_contact_pass(const ContactPass& pass) {
     total.wall_contacts += st.wall_contacts;
     total.max_overlap = std::max(total.max_overlap, st.max_overlap);
     total.max_fn = std::max(total.max_fn, st.max_fn);
-    total.deepest_fraction = std::max(total.deepest_fraction, st.deepest_fraction);
-    if (st.worst_ratio > total.worst_ratio ||
-        (st.worst_ratio == total.worst_ratio && st.worst_body >= 0 &&
-         (total.worst_body < 0 || st.worst_body < total.worst_body))) {
-      total.worst_ratio = st.worst_ratio;
-      total.worst_body = st.worst_body;
-      total.worst_radius = st.worst_radius;
-      total.worst_limit = st.worst_limit;
-    }
+    total.deep.merge(st.deep);
   }
   return total;
 }

@@ -29,28 +29,16 @@ struct ContactInputs {
 struct ThreadStats {
   std::size_t sphere_contacts = 0, wall_contacts = 0;
   double max_overlap = 0.0, max_fn = 0.0;
-  // Of the pairs past `prefilter` x their smaller radius (overlap_prefilter_fraction): the
-  // largest overlap / limit (sim/overlap_limits.hpp; above 1 the guard trips), that pair's body,
-  // smaller radius and limit, and the largest overlap / smaller radius.
-  double worst_ratio = 0.0;
-  std::int64_t worst_body = -1;
-  double worst_radius = 0.0, worst_limit = 0.0, deepest_fraction = 0.0;
+  // Overlap / smaller radius past which a pair's limit (sim/overlap_limits.hpp) is looked up
+  // (overlap_prefilter_fraction), and what those pairs left.
   double prefilter = 0.5;
+  DeepOverlap deep;
   // Called for every touching pair: two compares on the hot path, the divisions only when the
   // overlap is deep enough for its limit to matter.
   void note(double overlap, double fn, double r_min, double limit, std::int64_t body) {
     max_overlap = std::max(max_overlap, overlap);
     max_fn = std::max(max_fn, fn);
-    if (overlap > prefilter * r_min) {
-      deepest_fraction = std::max(deepest_fraction, overlap / r_min);
-      const double ratio = overlap / limit;
-      if (ratio > worst_ratio) {
-        worst_ratio = ratio;
-        worst_body = body;
-        worst_radius = r_min;
-        worst_limit = limit;
-      }
-    }
+    if (overlap > prefilter * r_min) deep.note(overlap, r_min, limit, body);
   }
 };
 

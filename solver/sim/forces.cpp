@@ -145,37 +145,37 @@ std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
     contacts_.count_body_contacts(spheres_, nb, body_contacts_);
     for (int c : body_contacts_) stats_.max_body_contacts = std::max(stats_.max_body_contacts, c);
   }
-  deepest_overlap_fraction_ = std::max(deepest_overlap_fraction_, total.deepest_fraction);
-  if (total.worst_ratio > 1.0 && failure_.status == RunStatus::ok) {
+  const DeepOverlap& deep = total.deep;
+  deepest_overlap_fraction_ = std::max(deepest_overlap_fraction_, deep.deepest_fraction);
+  if (deep.worst_ratio > 1.0 && failure_.status == RunStatus::ok) {
     std::ostringstream m;
-    const double overlap = total.worst_ratio * total.worst_limit;
-    m << "overlap reached " << overlap << " m, " << overlap / total.worst_radius
-      << " of the radius of a sphere with r = " << total.worst_radius << " m (limit "
-      << total.worst_limit << " m: " << options_.guards.max_overlap_fraction
+    m << "overlap reached " << deep.worst_overlap_m << " m, " << deep.worst_overlap_m / deep.worst_radius_m
+      << " of the radius of a sphere with r = " << deep.worst_radius_m << " m (limit "
+      << deep.worst_limit_m << " m: " << options_.guards.max_overlap_fraction
       << " of a lone sphere's radius or of a clump's volume-equivalent radius, at most "
       << options_.guards.max_clump_sphere_overlap_fraction
       << " of a clump sphere's own; Hertz contact assumes an overlap much smaller than the radius)";
     // A clump whose spheres differ much in size: a small sphere standing out of a large one
     // takes the body's whole momentum alone before the large sphere touches.
     double r_body_max = 0.0;
-    if (total.worst_body >= 0) {
-      const auto b = static_cast<std::size_t>(total.worst_body);
+    if (deep.worst_body >= 0) {
+      const auto b = static_cast<std::size_t>(deep.worst_body);
       for (std::uint32_t i = bodies_.first_sphere[b]; i < bodies_.first_sphere[b + 1]; ++i)
         r_body_max = std::max(r_body_max, spheres_.radius_m[i]);
     }
     const std::string step_note = step_size_note();
     if (!step_note.empty()) {
       m << "; likely cause: " << step_note;
-    } else if (r_body_max >= 5.0 * total.worst_radius) {
-      m << "; likely cause: the body's spheres range from r = " << total.worst_radius << " to "
-        << r_body_max << " m (radius ratio 1:" << r_body_max / total.worst_radius
+    } else if (r_body_max >= 5.0 * deep.worst_radius_m) {
+      m << "; likely cause: the body's spheres range from r = " << deep.worst_radius_m << " to "
+        << r_body_max << " m (radius ratio 1:" << r_body_max / deep.worst_radius_m
         << ") and the small sphere carries the body alone: make the small spheres of the clump "
            "larger or let them stand out less, or raise youngs_modulus_pa";
     } else {
       m << "; likely cause: particles too soft for the load (raise youngs_modulus_pa) or a time "
            "step too large for the impact speed (lower dt_s)";
     }
-    fail(RunStatus::deep_overlap, total.worst_body, m.str());
+    fail(RunStatus::deep_overlap, deep.worst_body, m.str());
   }
   return first_bad == std::numeric_limits<std::int64_t>::max() ? -1 : first_bad;
 }

@@ -57,15 +57,37 @@ struct PairBatchArgs {
   const double* overlap_limit_m = nullptr;  // each sphere's deepest allowed overlap (guards)
 };
 
+// The contacts deep enough for the overlap guard to look up their limit (past the prefilter,
+// overlap_prefilter_fraction x the smaller radius): the largest overlap / limit (above 1 the guard
+// trips) with that pair's body, overlap, smaller radius and limit, and the largest overlap /
+// smaller radius (Simulation::deepest_overlap_fraction).
+struct DeepOverlap {
+  double worst_ratio = 0.0, worst_overlap_m = 0.0, worst_radius_m = 0.0, worst_limit_m = 0.0;
+  double deepest_fraction = 0.0;
+  std::int64_t worst_body = -1;
+
+  void note(double overlap, double r_min, double limit, std::int64_t body) {
+    const double fraction = overlap / r_min;
+    if (fraction > deepest_fraction) deepest_fraction = fraction;
+    const double ratio = overlap / limit;
+    if (ratio > worst_ratio) *this = {ratio, overlap, r_min, limit, deepest_fraction, body};
+  }
+  // Another share's record; on a tie the lower body wins, so the record does not depend on how
+  // the work was split.
+  void merge(const DeepOverlap& o) {
+    const double deepest = deepest_fraction > o.deepest_fraction ? deepest_fraction : o.deepest_fraction;
+    if (o.worst_ratio > worst_ratio ||
+        (o.worst_ratio == worst_ratio && o.worst_body >= 0 && (worst_body < 0 || o.worst_body < worst_body)))
+      *this = o;
+    deepest_fraction = deepest;
+  }
+};
+
 // What ThreadStats::note() records, gathered over a batch.
 struct PairBatchStats {
   double max_overlap_m = 0.0, max_fn_n = 0.0;
-  // Overlap / smaller radius above which a pair's limit is looked up (overlap_prefilter_fraction).
-  double prefilter = 0.5;
-  // Of the pairs past the prefilter: the largest overlap / limit (above 1 the guard trips), that
-  // pair's smaller radius and limit, and the largest overlap / smaller radius.
-  double worst_ratio = 0.0, worst_radius_m = 0.0, worst_limit_m = 0.0, deepest_fraction = 0.0;
-  std::int64_t worst_body = -1;
+  double prefilter = 0.5;  // overlap / smaller radius past which a pair's limit is looked up
+  DeepOverlap deep;
 };
 
 // One touching sphere-wall contact, as the contact kernel's wall pass hands it to the wall batch

@@ -214,17 +214,8 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
       for (int l = 0; l < used; ++l) {
         const double rm = r_i[l] <= r_j[l] ? r_i[l] : r_j[l];
         if (!(ov[l] > stats.prefilter * rm)) continue;
-        const double fraction = ov[l] / rm;
-        if (fraction > stats.deepest_fraction) stats.deepest_fraction = fraction;
         const double li = a.overlap_limit_m[a.si[k[l]]], lj = a.overlap_limit_m[a.sj[k[l]]];
-        const double limit = li <= lj ? li : lj;
-        const double ratio = ov[l] / limit;
-        if (ratio > stats.worst_ratio) {
-          stats.worst_ratio = ratio;
-          stats.worst_body = li <= lj ? bi[l] : bj[l];
-          stats.worst_radius_m = rm;
-          stats.worst_limit_m = limit;
-        }
+        stats.deep.note(ov[l], rm, li <= lj ? li : lj, li <= lj ? bi[l] : bj[l]);
       }
     }
   }
