@@ -131,6 +131,12 @@ std::int64_t Simulation::finish_forces(bool mid_step, std::int64_t first_bad) {
       k += acc.contact_stiffness_n_m;
       c += acc.contacts;
     }
+    // The wall's work on the particles over this step (wall_work_j()): the trapezoidal rule on the
+    // forces at the step's two ends, with the wall's velocity over the step.
+    if (mid_step && walls_[w].motion)
+      wall_work_j_ -= 0.5 * dt *
+                      ((walls_[w].force_n + f).dot(walls_[w].pose.velocity_m_s) +
+                       (walls_[w].torque_n_m + tq).dot(walls_[w].pose.angular_velocity_rad_s));
     walls_[w].force_n = f;
     walls_[w].torque_n_m = tq;
     walls_[w].contact_stiffness_n_m = k;

@@ -24,8 +24,9 @@ struct GuardOptions {
   //    carried beyond Hertz theory's range.
   double max_overlap_fraction = 0.5;
   double max_clump_sphere_overlap_fraction = 2.0;
-  // Kinetic energy may not exceed this multiple of the energy the scene can supply (initial
-  // kinetic + potential energy above the lowest point + work of moving walls, see simulation.cpp).
+  // Kinetic energy, less the potential energy released and the work the moving walls did, may not
+  // exceed this multiple of the energy the scene can supply besides (initial kinetic energy, a
+  // fall of one sphere diameter, every body at the fastest wall's speed; simulation.cpp).
   double max_energy_factor = 10.0;
   // Steps between energy checks (NaN is checked every step).
   int check_interval = 200;

@@ -102,6 +102,13 @@ class Simulation {
 
   double kinetic_energy_j() const;
   double potential_energy_j() const;
+  // The work the moving walls have done on the particles since the energy guard's reference was
+  // last taken (J; negative when the particles did work on the walls): sum over the steps of
+  // -(F . v + T . w) dt, with F and T the force and torque the particles exert on the wall
+  // (Wall::force_n, torque_n_m) and v, w its velocity over the step. A servo lid that compresses a
+  // specimen stores its work as the contacts' elastic energy, which a collapsing force chain gives
+  // back as kinetic energy: the energy guard counts it (check_guards()).
+  double wall_work_j() const { return wall_work_j_; }
   // Smallest Rayleigh time step over all spheres (sim/time_step.hpp), s.
   double rayleigh_time_step_s() const;
   // Removes the bodies for which `remove(storage index)` is true (e.g. struck off above a rim);
@@ -191,6 +198,7 @@ class Simulation {
   std::uint64_t last_frame_step_ = std::numeric_limits<std::uint64_t>::max();  // none yet
   double reference_energy_j_ = -1.0;  // < 0: recompute
   double reference_potential_j_ = 0.0;
+  double wall_work_j_ = 0.0;  // since the reference (wall_work_j())
   bool ready_ = false;
   bool kick_pending_ = false;  // finish_kick() not yet applied
   double kick_dt_s_ = 0.0;     // the step it belongs to

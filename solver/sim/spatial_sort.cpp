@@ -161,6 +161,7 @@ void Simulation::remove_bodies(const std::function<bool(std::uint32_t index)>& r
   if (ready_) {
     reference_energy_j_ = energy_budget_j();
     reference_potential_j_ = potential_energy_j();
+    wall_work_j_ = 0.0;
   }
 }
 
