@@ -142,6 +142,7 @@ StudyData fixture(const fs::path& dir) {
   d.summary = summary_from_json(nlohmann::json::parse(R"({
     "study": "fixture", "stage_reached": "done", "converged": true, "evaluations": 40, "classical_workflow_evaluations": 93,
     "cpu_seconds": 600.5, "wall_seconds": 320.0, "tolerance": 0.02,
+    "warnings": ["test shear, model manual-9: direct_shear.quick.diameter_m is small for the seed"],
     "calibrated": {"seed_seed.static_friction": 0.5}, "held_at_nominal": {"seed_seed.restitution": 0.45},
     "confirmed": {"shear_strength_pa": {"mean": 118000.0, "sd": 900.0, "n": 3, "rel_error": -0.002, "rel_error_ci": [-0.01, 0.006],
                   "target": 118230.0, "within_tolerance": true, "resolved": true}},
@@ -201,6 +202,10 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
                       "skipped (model cannot be chosen)."),
             std::string::npos);
   EXPECT_NE(html.find("Needs a newer study store"), std::string::npos);
+  // The rigs' warnings stand on the first screen, in both formats.
+  const std::string warned = "test shear, model manual-9: direct_shear.quick.diameter_m is small for the seed";
+  EXPECT_LT(html.find(warned), html.find("<h2>Study inputs</h2>"));
+  EXPECT_NE(md.find("test shear, model manual-9: direct\\_shear.quick.diameter\\_m is small for the seed"), std::string::npos) << md;
   EXPECT_NE(md.find("(scenes/piling/side_view.svg)"), std::string::npos) << md;
   for (const char* f : {"verification.csv", "model_selection.csv", "summary.csv", "calibrated_values.csv", "confirmed.csv", "fit_statistics.csv"})
     EXPECT_TRUE(fs::exists(dir / "report" / f)) << f;

@@ -212,6 +212,7 @@ json to_json(const StudySummary& s) {
   j["provenance"] = {{"seedcal_version", s.provenance.seedcal_version}, {"study_file", s.provenance.study_file},
                      {"seed", s.provenance.seed}, {"config_hash", s.provenance.config_hash},
                      {"config", s.provenance.config}};
+  j["warnings"] = s.warnings;
   return j;
 }
 
@@ -275,6 +276,10 @@ StudySummary summary_from_json(const json& j, const std::string& file) {
     r.with(v, p, "config_hash", [&](const json& x, const std::string& q) { o.config_hash = r.string(x, q); });
     r.with(v, p, "config", [&](const json& x, const std::string& q) { o.config = r.string(x, q); });
     r.with(v, p, "seed", [&](const json& x, const std::string& q) { o.seed = r.integer<std::uint64_t>(x, q); });
+  });
+  r.with(j, "", "warnings", [&](const json& v, const std::string& p) {
+    std::size_t i = 0;
+    for (const json& w : r.array(v, p)) s.warnings.push_back(r.string(w, p + "[" + std::to_string(i++) + "]"));
   });
   // The stages' reports, as their stages wrote them.
   r.with(j, "", "solution_set", [&](const json& v, const std::string& p) { s.solution_set = r.object(v, p); });

@@ -78,6 +78,10 @@ struct StudySummary {
   std::vector<ModelCalibration> calibration_per_model;  // empty unless every model is calibrated
   double cpu_seconds = 0.0, calibration_cpu_seconds = 0.0, verification_cpu_seconds = 0.0, wall_seconds = 0.0;
   SummaryProvenance provenance;
+  // What the scenes said about their rigs before any run (calibrate/pipeline/scene_check.hpp: a
+  // box a few seeds across, a specimen under two seeds tall ...), each with its test and model:
+  // the results were measured on those rigs.
+  std::vector<std::string> warnings;
   // The stages' reports (null: the stage has not reported).
   nlohmann::json solution_set = nlohmann::json::object();  // the solve stage
   nlohmann::json posterior;        // without its region grid (that is in study.h5)

@@ -59,6 +59,7 @@ StudySummary full_summary() {
   s.verification_cpu_seconds = 200.5;
   s.wall_seconds = 320.0;
   s.provenance = {"0.9.0+abc", "data/studies/x.toml", "fnv:1234", "name = \"x\"\n", 42};
+  s.warnings = {"test shear, model manual-9: the box is 5.1 seed lengths across"};
   s.solution_set = {{"found", true}};
   s.posterior = {{"mode", {{"seed_seed.static_friction", 0.6}}}};
   s.curve = {{"test", "piling"}};
@@ -110,6 +111,7 @@ TEST(StudySummary, AnOlderSummaryReadsWithDefaults) {
   EXPECT_EQ(s.calibrated.at("a"), 1.5);
   EXPECT_TRUE(s.identified.empty());
   EXPECT_TRUE(s.posterior.is_null());
+  EXPECT_TRUE(s.warnings.empty());
 }
 
 TEST(StudySummary, AMemberOfTheWrongTypeIsNamedWithItsFile) {
@@ -126,6 +128,7 @@ TEST(StudySummary, AMemberOfTheWrongTypeIsNamedWithItsFile) {
             std::string::npos);
   EXPECT_NE(bad(R"({"provenance": {"seed": -1}})").find("provenance.seed is not a non-negative integer"), std::string::npos);
   EXPECT_NE(bad("[1, 2]").find("the document is not an object"), std::string::npos);
+  EXPECT_NE(bad(R"({"warnings": ["a", 2]})").find("warnings[1] is not a string"), std::string::npos);
   // Written by a newer build: refused, both versions named.
   const std::string newer = bad(("{\"schema_version\": " + std::to_string(kStudyStoreSchemaVersion + 1) + "}").c_str());
   EXPECT_NE(newer.find("schema_version = " + std::to_string(kStudyStoreSchemaVersion + 1)), std::string::npos) << newer;

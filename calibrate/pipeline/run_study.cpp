@@ -98,8 +98,9 @@ nlohmann::json stage_digest(const nlohmann::json& stages) {
 
 StudySummary summary_of(const StudyConfig& s, const PipelineState& st, const std::vector<PipelineState>& others,
                         const StudyEvaluator& ev, const StudyStore& store, const std::string& stage_reached,
-                        const std::string& hash) {
+                        const std::string& hash, const std::vector<std::string>& warnings) {
   StudySummary out;
+  out.warnings = warnings;
   out.schema_version = kStudyStoreSchemaVersion;  // the study directory's layout (docs/store.md)
   out.study = s.name;
   out.stage_reached = stage_reached;
@@ -293,7 +294,7 @@ nlohmann::json run_study(const StudyRunOptions& o, const ExecutorFactory& make_e
   auto checkpoint = [&](const std::string& stage) {
     sessions[session]["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     store.set_stage("sessions", sessions);
-    const nlohmann::json j = to_json(summary_of(s, st, others, ev, store, stage, hash));
+    const nlohmann::json j = to_json(summary_of(s, st, others, ev, store, stage, hash, warnings));
     write_json_atomic(o.out_dir + "/summary.json", j);
     return j;
   };

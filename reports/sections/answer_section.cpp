@@ -1,7 +1,8 @@
 // The report's first screen: the answer. The calibrated values with their 95 % credible intervals
 // and whether each is identified (with the reason), the confirmation against the target, the
-// verification tests against the laboratory, and the chosen clump model with the comparison that
-// chose it. The inputs and the stage-by-stage detail follow in the later sections.
+// verification tests against the laboratory, the chosen clump model with the comparison that chose
+// it, and what the scenes warned about their rigs. The inputs and the stage-by-stage detail
+// follow in the later sections.
 #include <cmath>
 
 #include "reports/sections/common.hpp"
@@ -74,6 +75,12 @@ void add_answer_section(const StudyData& d, Document& doc) {
       text += ". Tied within the scatter: " + ties;
     }
     s.paragraph(text + ".");
+  }
+  // The rigs' warnings (a box a few seeds across, say): every number above was measured on them.
+  if (!j.warnings.empty()) {
+    s.paragraph("The scenes warned about their rigs before the first run; every result above was measured on "
+                "these rigs:");
+    for (const std::string& w : j.warnings) s.note(w);
   }
   doc.sections.push_back(std::move(s));
 }
