@@ -29,6 +29,7 @@ std::vector<std::string> provenance_lines(const ExportedModel& m) {
       out.push_back("  " + path + " = " + exact_number_text(v.get<double>()) + " (calibrated)");
     for (const auto& [path, v] : m.held_at_nominal.items())
       out.push_back("  " + path + " = " + exact_number_text(v.get<double>()) + " (held at its nominal value)");
+    for (const std::string& w : m.warnings) out.push_back("the study's scenes warned (the values were fitted on this rig): " + w);
   } else {
     out.push_back("values: the scene " + m.scene_path);
   }

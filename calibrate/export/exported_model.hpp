@@ -23,6 +23,7 @@ struct ExportedModel {
   std::string scene_path;
   std::string particle_description;  // the clump file, as the scene names it
   bool converged = true;
+  std::vector<std::string> warnings;  // the study's rig warnings (summary.json: warnings)
   nlohmann::json calibrated = nlohmann::json::object();       // parameter path -> value
   nlohmann::json held_at_nominal = nlohmann::json::object();  // parameter path -> value
 

@@ -111,6 +111,7 @@ ExportedModel read_finished_study(const FinishedStudyOptions& o) {
   m.model_reason = reason;
   m.test_name = t.name;
   m.converged = summary.converged;
+  m.warnings = summary.warnings;
   m.calibrated = calibrated;
   m.held_at_nominal = held;
   return m;

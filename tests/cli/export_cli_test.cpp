@@ -62,6 +62,18 @@ TEST_F(ExportCli, WritesTheChosenModelWithTheStudysValues) {
   EXPECT_NE(spheres.find("\n7,"), std::string::npos);
   EXPECT_EQ(spheres.find("\n8,"), std::string::npos);
   EXPECT_NE(spheres.find("clump model \"manual-7\": chosen by the study's model selection"), std::string::npos);
+  // The study's rig warnings travel with its values.
+  nlohmann::json warned = summary_;
+  warned["warnings"] = {"test shear, model manual-7: the box is 5.1 seed lengths across"};
+  r = run_export(warned, "--format csv --out " + dir_ + "/warned");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::string header = read_text(dir_ + "/warned/parameters.csv");  // comment lines wrap: unwrap them
+  for (std::size_t at = header.find("\n# "); at != std::string::npos; at = header.find("\n# ", at))
+    header.replace(at, 3, " ");
+  EXPECT_NE(header.find("the study's scenes warned (the values were fitted on this rig): test shear, model manual-7: "
+                        "the box is 5.1 seed lengths across"),
+            std::string::npos)
+      << header;
 
   r = run_export(summary_, "--format liggghts --out " + dir_ + "/lig --count 120");
   ASSERT_EQ(r.exit_code, 0) << r.output;
