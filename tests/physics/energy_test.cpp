@@ -43,35 +43,44 @@ double total_energy(const Simulation& sim) {
   return e;
 }
 
+// Table 6's seed made elastic and frictionless: restitution 1, no friction, no rolling resistance.
 testing::MaterialSpec elastic_frictionless() {
-  testing::MaterialSpec m;
-  m.density_kg_m3 = 1340.0;
-  m.youngs_modulus_pa = 1.65e8;
-  m.poisson_ratio = 0.4;
+  testing::MaterialSpec m = testing::table6_seed();
   m.restitution = 1.0;
   m.static_friction = 0.0;
+  m.rolling_friction = 0.0;
   return m;
 }
 
-TEST(Energy, ElasticFrictionlessBedConservesEnergy) {
-  testing::MaterialSpec m;
-  m.density_kg_m3 = 1340.0;
-  m.youngs_modulus_pa = 1.65e8;
-  m.poisson_ratio = 0.4;
-  m.restitution = 1.0;
-  m.static_friction = 0.0;
-  InteractionTable table = testing::make_table(m);
+// Options stepping spheres of radius `radius_m` of material 0 at `fraction` of their Rayleigh step.
+SimulationOptions rayleigh_options(const InteractionTable& table, double radius_m, double fraction) {
   SimulationOptions opt;
-  opt.dt_s = 1e-6;
+  opt.dt_s = 1e-6;  // any; only the Rayleigh step is read
   Simulation probe(table, opt);
-  probe.add_body(sphere_body(0.002, m.density_kg_m3, 0));
-  opt.dt_s = 0.2 * probe.rayleigh_time_step_s();
+  probe.add_body(sphere_body(radius_m, table.materials()[0].density_kg_m3, 0));
+  opt.dt_s = fraction * probe.rayleigh_time_step_s();
+  return opt;
+}
+
+// A bed of 6 x 6 x 6 elastic, frictionless spheres of 2 mm in a box, flying at random (seed 7).
+Simulation elastic_bed(const testing::BedSpec& bed) {
+  const testing::MaterialSpec m = elastic_frictionless();
+  const InteractionTable table = testing::make_table(m);
+  SimulationOptions opt = rayleigh_options(table, bed.radius_m, 0.2);
   opt.seed = 7;
   Simulation sim(table, opt);
-  testing::BedSpec bed;
-  bed.nx = bed.ny = 6;
-  bed.nz = 6;
   testing::add_random_bed(sim, bed, m.density_kg_m3);
+  return sim;
+}
+
+testing::BedSpec six_cubed() {
+  testing::BedSpec bed;
+  bed.nx = bed.ny = bed.nz = 6;
+  return bed;
+}
+
+TEST(Energy, ElasticFrictionlessBedConservesEnergy) {
+  Simulation sim = elastic_bed(six_cubed());
   const double e0 = total_energy(sim);
   double worst = 0.0;
   std::size_t contacts = 0;
@@ -99,18 +108,8 @@ TEST(Energy, ElasticFrictionlessBedConservesEnergy) {
 // The same bed with a lid (a plane facing down) that comes down at 0.05 m/s from above the bed and
 // compresses it: the bed's total energy changes by the lid's work, -sum F . v dt.
 TEST(Energy, MovingLidChangesTheEnergyByItsWork) {
-  const testing::MaterialSpec m = elastic_frictionless();
-  InteractionTable table = testing::make_table(m);
-  SimulationOptions opt;
-  opt.dt_s = 1e-6;
-  Simulation probe(table, opt);
-  probe.add_body(sphere_body(0.002, m.density_kg_m3, 0));
-  opt.dt_s = 0.2 * probe.rayleigh_time_step_s();
-  opt.seed = 7;
-  Simulation sim(table, opt);
-  testing::BedSpec bed;
-  bed.nx = bed.ny = bed.nz = 6;
-  testing::add_random_bed(sim, bed, m.density_kg_m3);
+  const testing::BedSpec bed = six_cubed();
+  Simulation sim = elastic_bed(bed);
   const double top = bed.nz * bed.spacing * bed.radius_m;
   Wall lid = testing::plane_wall(Vec3(0, 0, top + 0.001), -Vec3::UnitZ());
   lid.motion = std::make_shared<ConstantVelocity>(Vec3(0, 0, -0.05));
@@ -129,9 +128,34 @@ TEST(Energy, MovingLidChangesTheEnergyByItsWork) {
               1e3 * travel, work, e0, worst);
   // The lid pressed into the bed for real: its work is a good part of the bed's energy.
   EXPECT_GT(work, 0.2 * e0);
-  // 2e-3: Verlet's 1e-3 of the closed box (above) plus the work's first-order sum, whose error
-  // over a whole impact cancels (a contact's force starts and ends at zero).
+  // 2e-3: Verlet's 1e-3 of the closed box (above) plus the error of the work's trapezoidal sum,
+  // which over a whole impact cancels (a contact's force starts and ends at zero).
   EXPECT_LT(worst, 2e-3);
+}
+
+// Two seed-sized spheres (r 5 mm, Table 6's seed without rolling resistance) stacked on a floor
+// under a servo lid that holds 200 N (the 200 kPa of the shear box on one force chain), stepped at
+// `fraction` of the Rayleigh step. Walls: the floor is 0, the lid 1.
+constexpr double kColumnRadius = 0.005, kColumnForce_n = 200.0, kLidSpeed = 0.1;
+
+Simulation loaded_column(double fraction, const GuardOptions& guards = {}) {
+  testing::MaterialSpec m = testing::table6_seed();
+  m.rolling_friction = 0.0;
+  const InteractionTable table = testing::make_table(m, 2e11, 0.3);
+  constexpr double r = kColumnRadius;
+  SimulationOptions opt = rayleigh_options(table, r, fraction);
+  opt.guards = guards;
+  Simulation sim(table, opt);
+  BodyDef low = sphere_body(r, m.density_kg_m3, 0), high = low;
+  low.position_m = Vec3(0, 0, r);
+  high.position_m = Vec3(0, 0, 3.0 * r);
+  sim.add_body(low);
+  sim.add_body(high);
+  sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
+  Wall lid = testing::plane_wall(Vec3(0, 0, 4.0 * r + 0.0005), -Vec3::UnitZ());
+  lid.motion = std::make_shared<Servo>(-Vec3::UnitZ(), kColumnForce_n, kLidSpeed);
+  sim.add_wall(lid);
+  return sim;
 }
 
 // Two seed-sized spheres stacked on a floor under a servo lid that holds 200 N (the 200 kPa of the
@@ -142,34 +166,17 @@ TEST(Energy, MovingLidChangesTheEnergyByItsWork) {
 // the kinetic energy never exceeds the lid's work plus the potential energy released (energy
 // balance; the dashpots and friction only take energy out).
 TEST(Energy, ServoLoadedColumnSpringsApartWithinTheLidsWork) {
-  testing::MaterialSpec m = testing::table6_seed();
-  m.rolling_friction = 0.0;
-  InteractionTable table = testing::make_table(m, 2e11, 0.3);
-  constexpr double r = 0.005, force_n = 200.0, lid_speed = 0.1;
-  SimulationOptions opt;
-  opt.dt_s = 1e-6;
-  Simulation probe(table, opt);
-  probe.add_body(sphere_body(r, m.density_kg_m3, 0));
-  opt.dt_s = 0.2 * probe.rayleigh_time_step_s();
-  Simulation sim(table, opt);
-  BodyDef low = sphere_body(r, m.density_kg_m3, 0), high = low;
-  low.position_m = Vec3(0, 0, r);
-  high.position_m = Vec3(0, 0, 3.0 * r);
-  sim.add_body(low);
-  sim.add_body(high);
-  const std::size_t floor = sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
-  Wall lid = testing::plane_wall(Vec3(0, 0, 4.0 * r + 0.0005), -Vec3::UnitZ());
-  auto servo = std::make_shared<Servo>(-Vec3::UnitZ(), force_n, lid_speed);
-  lid.motion = servo;
-  const std::size_t lid_index = sim.add_wall(lid);
+  Simulation sim = loaded_column(0.2);
+  const auto& servo = dynamic_cast<const Servo&>(*sim.walls()[1].motion);
+  const double dt = sim.options().dt_s, r = kColumnRadius;
   // Loaded: the lid holds its force to 1 %.
-  ASSERT_TRUE(sim.run(static_cast<std::uint64_t>(0.03 / opt.dt_s))) << sim.failure().message;
-  ASSERT_NEAR(servo->measured_force_n(sim.walls()[lid_index]) / force_n, 1.0, 0.01);
+  ASSERT_TRUE(sim.run(static_cast<std::uint64_t>(0.03 / dt))) << sim.failure().message;
+  ASSERT_NEAR(servo.measured_force_n(sim.walls()[1]) / kColumnForce_n, 1.0, 0.01);
   const double stored = sim.wall_work_j();
-  sim.walls()[floor].pose.origin_m.z() = -1.0;
-  const double m_total = 2.0 * low.mass_kg;
+  sim.walls()[0].pose.origin_m.z() = -1.0;
+  const double m_total = sim.bodies().mass_kg[0] + sim.bodies().mass_kg[1];
   const double old_limit =
-      GuardOptions{}.max_energy_factor * (m_total * 9.81 * 2.0 * r + 0.5 * m_total * lid_speed * lid_speed);
+      GuardOptions{}.max_energy_factor * (m_total * 9.81 * 2.0 * r + 0.5 * m_total * kLidSpeed * kLidSpeed);
   const double pe0 = sim.potential_energy_j(), w0 = sim.wall_work_j();
   double peak_ke = 0.0, worst_excess = -1.0;
   for (int k = 0; k < 200; ++k) {
@@ -193,26 +200,9 @@ TEST(Energy, ServoLoadedColumnSpringsApartWithinTheLidsWork) {
 // hundred steps. (The guard is checked every step here, so the energy check comes before a
 // non-finite value.)
 TEST(Energy, GuardStopsABlowUpUnderAWorkingLid) {
-  testing::MaterialSpec m = testing::table6_seed();
-  m.rolling_friction = 0.0;
-  InteractionTable table = testing::make_table(m, 2e11, 0.3);
-  constexpr double r = 0.005;
-  SimulationOptions opt;
-  opt.dt_s = 1e-6;
-  Simulation probe(table, opt);
-  probe.add_body(sphere_body(r, m.density_kg_m3, 0));
-  opt.dt_s = 4.0 * probe.rayleigh_time_step_s();
-  opt.guards.check_interval = 1;
-  Simulation sim(table, opt);
-  BodyDef low = sphere_body(r, m.density_kg_m3, 0), high = low;
-  low.position_m = Vec3(0, 0, r);
-  high.position_m = Vec3(0, 0, 3.0 * r);
-  sim.add_body(low);
-  sim.add_body(high);
-  sim.add_wall(testing::plane_wall(Vec3::Zero(), Vec3::UnitZ()));
-  Wall lid = testing::plane_wall(Vec3(0, 0, 4.0 * r + 0.0005), -Vec3::UnitZ());
-  lid.motion = std::make_shared<Servo>(-Vec3::UnitZ(), 200.0, 0.1);
-  sim.add_wall(lid);
+  GuardOptions every_step;
+  every_step.check_interval = 1;
+  Simulation sim = loaded_column(4.0, every_step);
   EXPECT_FALSE(sim.run(100000));
   EXPECT_EQ(sim.failure().status, RunStatus::energy_runaway) << sim.failure().message;
   EXPECT_NE(sim.failure().message.find("the work the walls did"), std::string::npos) << sim.failure().message;
