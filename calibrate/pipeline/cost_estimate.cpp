@@ -25,22 +25,35 @@ std::string fmt(const char* f, double v) {
 
 }  // namespace
 
+double RunPricer::probe(const RunPlan& plan, double confining_stress_pa) {
+  double radii = 0.0;
+  for (const SphereDef& sp : plan.body.spheres) radii += sp.radius_m;
+  const auto key = std::make_tuple(plan.body.spheres.size(), plan.body.mass_kg, radii, confining_stress_pa);
+  auto it = probes_.find(key);
+  if (it == probes_.end()) {
+    // A bed for the bulk scenes; one body in flight for a free drop or an impact.
+    const CostProbe p = probe_sphere_step_cost(plan.physics, plan.body, plan.dt_s, threads_, plan.seeds > 2.0,
+                                               plan.seeds > 2.0 ? confining_stress_pa : 0.0);
+    probe_cpu_s_ += p.probe_cpu_s;
+    it = probes_.emplace(key, p.cpu_s_per_sphere_step).first;
+  }
+  return it->second;
+}
+
 SceneCost RunPricer::price(const SceneFile& scene) {
   SceneCost c;
   c.kind = scene.kind;
   c.plan = plan_scene(scene);
-  double radii = 0.0;
-  for (const SphereDef& sp : c.plan.body.spheres) radii += sp.radius_m;
-  const auto key = std::make_tuple(c.plan.body.spheres.size(), c.plan.body.mass_kg, radii);
-  auto it = probes_.find(key);
-  if (it == probes_.end()) {
-    // A bed for the bulk scenes; one body in flight for a free drop or an impact.
-    const CostProbe p = probe_sphere_step_cost(c.plan.physics, c.plan.body, c.plan.dt_s, threads_, c.plan.seeds > 2.0);
-    probe_cpu_s_ += p.probe_cpu_s;
-    it = probes_.emplace(key, p.cpu_s_per_sphere_step).first;
+  c.cpu_s_per_sphere_step = probe(c.plan, 0.0);
+  for (const PlanPhase& ph : c.plan.phases) {
+    const double sphere_steps = c.plan.dt_s > 0.0 ? ph.spheres * ph.simulated_s / c.plan.dt_s : 0.0;
+    double cost = c.cpu_s_per_sphere_step;
+    if (ph.confining_stress_pa > 0.0) {
+      c.confining_stress_pa = ph.confining_stress_pa;
+      c.cpu_s_per_sphere_step_loaded = cost = probe(c.plan, ph.confining_stress_pa);
+    }
+    c.cpu_s += sphere_steps * cost;
   }
-  c.cpu_s_per_sphere_step = it->second;
-  c.cpu_s = c.plan.sphere_steps() * c.cpu_s_per_sphere_step;
   return c;
 }
 
@@ -55,7 +68,11 @@ std::string describe_scene_cost(const std::string& what, const SceneCost& c) {
   return "plan: " + what + " (" + c.kind + "): " + fmt("%.0f", c.plan.seeds) + " seeds, " +
          fmt("%.0f", c.plan.spheres) + " spheres, " + fmt("%.3g", c.plan.simulated_s()) + " s simulated at dt " +
          fmt("%.3g", c.plan.dt_s) + " s (" + fmt("%.3g", c.plan.steps()) + " steps), " +
-         fmt("%.0f", c.cpu_s_per_sphere_step * 1e9) + " ns a sphere-step: ~" + fmt("%.3g", c.cpu_s) +
+         fmt("%.0f", c.cpu_s_per_sphere_step * 1e9) + " ns a sphere-step" +
+         (c.cpu_s_per_sphere_step_loaded > 0.0 ? " (" + fmt("%.0f", c.cpu_s_per_sphere_step_loaded * 1e9) + " under " +
+                                                      fmt("%.3g", c.confining_stress_pa * 1e-3) + " kPa)"
+                                                : std::string()) +
+         ": ~" + fmt("%.3g", c.cpu_s) +
          " CPU s a run";
 }
 

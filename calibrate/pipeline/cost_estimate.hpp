@@ -25,6 +25,9 @@ struct SceneCost {
   std::string test, model, kind;
   RunPlan plan;
   double cpu_s_per_sphere_step = 0.0;
+  // Under the stress of its loaded phases (the shear box's consolidation and shear; 0: none), with
+  // that stress: those phases are priced at this cost.
+  double cpu_s_per_sphere_step_loaded = 0.0, confining_stress_pa = 0.0;
   double cpu_s = 0.0;  // one run
   // Why the scene refuses this model's settings (its runs will fail with that reason and are priced
   // at nothing); empty when the scene accepts them.
@@ -32,7 +35,8 @@ struct SceneCost {
 };
 
 // Prices scene runs on this machine: one cost probe per distinct seed template (at the time step of
-// the first scene that uses it: the cost of a step hardly depends on its length).
+// the first scene that uses it: the cost of a step hardly depends on its length), and one more per
+// template and stress for the phases a servo loads.
 class RunPricer {
  public:
   explicit RunPricer(int threads) : threads_(threads) {}
@@ -41,8 +45,10 @@ class RunPricer {
   double probe_cpu_s() const { return probe_cpu_s_; }
 
  private:
+  // One probe per seed template and stress (0: the bed at rest).
+  double probe(const RunPlan& plan, double confining_stress_pa);
   int threads_;
-  std::map<std::tuple<std::size_t, double, double>, double> probes_;  // spheres, mass, radius sum
+  std::map<std::tuple<std::size_t, double, double, double>, double> probes_;  // spheres, mass, radius sum, stress
   double probe_cpu_s_ = 0.0;
 };
 

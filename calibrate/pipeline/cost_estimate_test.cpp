@@ -12,6 +12,8 @@
 #include "calibrate/pipeline/cost_estimate.hpp"
 #include "calibrate/pipeline/progress.hpp"
 #include "calibrate/pipeline/study_config.hpp"
+#include "calibrate/scenes/scene_file.hpp"
+#include "solver/scenes/cost_probe.hpp"
 #include "tests/support/cli.hpp"
 
 namespace seedcal {
@@ -38,7 +40,17 @@ TEST(CostEstimate, QuickStudyRunsFollowItsPlan) {
     EXPECT_GT(c.plan.spheres, c.plan.seeds);  // multi-sphere clumps
     EXPECT_GT(c.plan.steps(), 0.0);
     EXPECT_GT(c.cpu_s_per_sphere_step, 0.0);
-    EXPECT_NEAR(c.cpu_s, c.plan.sphere_steps() * c.cpu_s_per_sphere_step, 1e-12 * c.cpu_s);
+    // The phases a servo loads (the shear box's consolidation and shear) at the loaded probe's
+    // cost, the others at the bed's at rest.
+    double loaded = 0.0, at_rest = 0.0;
+    for (const PlanPhase& ph : c.plan.phases)
+      (ph.confining_stress_pa > 0.0 ? loaded : at_rest) += ph.spheres * ph.simulated_s / c.plan.dt_s;
+    EXPECT_EQ(loaded > 0.0, c.kind == "direct_shear");
+    EXPECT_EQ(c.cpu_s_per_sphere_step_loaded > 0.0, loaded > 0.0);
+    if (loaded > 0.0) {
+      EXPECT_EQ(c.confining_stress_pa, 2e5);  // the quick box's normal stress
+    }
+    EXPECT_NEAR(c.cpu_s, at_rest * c.cpu_s_per_sphere_step + loaded * c.cpu_s_per_sphere_step_loaded, 1e-12 * c.cpu_s);
   }
   // The stages as the study file sets them: the screening design with its replicates, no ascent
   // expected, the heap at the curve's points, the verification's every test under every model with
@@ -82,6 +94,23 @@ TEST(CostEstimate, QuickStudyRunsFollowItsPlan) {
     if (c.kind == "direct_shear") shear = c.cpu_s;
   }
   EXPECT_GT(heap, 10.0 * shear);
+}
+
+// The loaded probe presses its bed to the stress asked (to the servo's 5 % tolerance, with the
+// bed's own settling on top: 10 %) with at least 160 bodies, two to three seeds deep; the bed at
+// rest has no lid.
+TEST(CostProbe, LoadedBedHoldsItsStress) {
+  const StudyConfig s = read_study(testing::source_dir() + "/data/studies/jinong1-quick.toml");
+  const StudyTarget& shear = s.scene_of(0);
+  ASSERT_EQ(shear.name, "shear");
+  const RunPlan plan = plan_scene(load_scene_file(shear.scene, {"fidelity=quick"}));
+  const CostProbe loaded = probe_sphere_step_cost(plan.physics, plan.body, plan.dt_s, 1, true, 2e5);
+  EXPECT_GE(loaded.bodies, 160u);
+  EXPECT_EQ(loaded.confining_stress_pa, 2e5);
+  EXPECT_NEAR(loaded.measured_stress_pa / 2e5, 1.0, 0.10);
+  EXPECT_GT(loaded.cpu_s_per_sphere_step, 0.0);
+  const CostProbe rest = probe_sphere_step_cost(plan.physics, plan.body, plan.dt_s, 1, true);
+  EXPECT_EQ(rest.measured_stress_pa, 0.0);
 }
 
 TEST(CostEstimate, ARefusedSceneIsNamedAndPricedAtNothing) {

@@ -188,8 +188,13 @@ nlohmann::json cost_json(const StudyCostEstimate& e) {
     scenes.push_back({{"test", c.test}, {"model", c.model}, {"kind", c.kind}, {"seeds", c.plan.seeds},
                       {"spheres", c.plan.spheres}, {"simulated_s", c.plan.simulated_s()}, {"dt_s", c.plan.dt_s},
                       {"cpu_s_per_sphere_step", c.cpu_s_per_sphere_step}, {"cpu_s_per_run", c.cpu_s}});
-  for (std::size_t k = 0; k < e.scenes.size(); ++k)
+  for (std::size_t k = 0; k < e.scenes.size(); ++k) {
     if (!e.scenes[k].refused.empty()) scenes[k]["refused"] = e.scenes[k].refused;
+    if (e.scenes[k].cpu_s_per_sphere_step_loaded > 0.0) {
+      scenes[k]["cpu_s_per_sphere_step_loaded"] = e.scenes[k].cpu_s_per_sphere_step_loaded;
+      scenes[k]["confining_stress_pa"] = e.scenes[k].confining_stress_pa;
+    }
+  }
   return {{"runs", e.runs}, {"runs_at_most", e.runs_at_most}, {"cpu_s", e.cpu_s}, {"cpu_s_at_most", e.cpu_s_at_most},
           {"probe_cpu_s", e.probe_cpu_s}, {"stages", stages}, {"scenes", scenes}};
 }

@@ -5,6 +5,7 @@
 
 #include "solver/sim/particle_factory.hpp"
 #include "solver/walls/box_shape.hpp"
+#include "solver/walls/servo_wall.hpp"
 
 namespace seedcal {
 namespace {
@@ -14,19 +15,32 @@ namespace {
 // forms a bed two deep.
 constexpr double kProbeSpheres = 1500.0;
 constexpr std::size_t kMinBodies = 12, kMaxBodies = 400;
+// A loaded bed: at least 160 bodies, two to three seeds deep in the box below (six seed lengths
+// square: about 60 seeds lying flat make a layer), so the lid's load reaches the bed through a layer
+// of seeds as a shear box's cap does. The lid starts half a millimetre above the bed, moves at up
+// to 0.5 m/s (the probe measures cost, not physics) and is taken as loaded once it holds the stress
+// to 5 %, or after kMaxLoadSteps.
+constexpr std::size_t kMinLoadedBodies = 160;
+constexpr double kLidClearance_m = 0.0005, kLidSpeed_m_s = 0.5, kLoadTolerance = 0.05;
+constexpr std::uint64_t kLoadCheckSteps = 100, kMaxLoadSteps = 40000;
 // The bodies are placed in a region four bed heights tall (about a quarter of it solid, where the
 // factory's random placement jams) and fall under five times gravity, which brings them into a bed
-// in a fifth of the time: the probe measures cost, not physics.
+// in a fifth of the time: the probe measures cost, not physics. They fall for one and a half times
+// the fall time from the region's top (the last half for the bed's collisions to die out), in at
+// most kMaxFallSteps or kMaxFallSphereSteps sphere-steps, whichever allows more; where that is too
+// few (a fine clump at its short step) gravity is raised further so the fall fits: a bed still in
+// flight, whose spheres touch nothing, priced a fine clump at a third of its cost.
 constexpr double kGravityFactor = 5.0;
 constexpr double kRegionSolidFraction = 0.15;
 constexpr std::uint64_t kTimedSteps = 1000;
-constexpr double kMaxFallSteps = 20000.0;
+constexpr double kFallAndSettle = 1.5;
+constexpr double kMaxFallSteps = 20000.0, kMaxFallSphereSteps = 4e8;
 constexpr double kMaxFlightSteps = 20000.0;
 
 }  // namespace
 
 CostProbe probe_sphere_step_cost(const PhysicsSpec& physics, const BodyDef& body, double dt_s, int threads,
-                                 bool bed) {
+                                 bool bed, double confining_stress_pa) {
   CostProbe res;
   if (!bed) {
     SimulationOptions opt;
@@ -51,7 +65,9 @@ CostProbe probe_sphere_step_cost(const PhysicsSpec& physics, const BodyDef& body
     return res;
   }
   const double per_body = static_cast<double>(std::max<std::size_t>(1, body.spheres.size()));
-  const std::size_t n = std::clamp(static_cast<std::size_t>(kProbeSpheres / per_body), kMinBodies, kMaxBodies);
+  const bool loaded = confining_stress_pa > 0.0;
+  const std::size_t n = std::clamp(static_cast<std::size_t>(kProbeSpheres / per_body),
+                                   loaded ? kMinLoadedBodies : kMinBodies, kMaxBodies);
   double reach = 0.0;
   for (const SphereDef& s : body.spheres) reach = std::max(reach, s.offset_m.norm() + s.radius_m);
   const double rho = physics.materials[body.material].density_kg_m3;
@@ -60,9 +76,14 @@ CostProbe probe_sphere_step_cost(const PhysicsSpec& physics, const BodyDef& body
   const double side = 12.0 * reach;
   const double height =
       std::max(4.0 * reach, static_cast<double>(n) * volume / (kRegionSolidFraction * side * side));
+  const double g0 = kGravityFactor * physics.gravity_m_s2.norm();
+  const double want_steps = kFallAndSettle * std::sqrt(2.0 * height / std::max(g0, 1e-9)) / dt_s;
+  const double fall_steps = std::min(want_steps, std::max(kMaxFallSteps, kMaxFallSphereSteps / (static_cast<double>(n) * per_body)));
+  // The fall time goes as g^(-1/2): (want / allowed)^2 more gravity fits it into the allowed steps.
+  const double raise = want_steps > fall_steps ? (want_steps / fall_steps) * (want_steps / fall_steps) : 1.0;
   SimulationOptions opt;
   opt.contact = physics.contact;
-  opt.gravity_m_s2 = kGravityFactor * physics.gravity_m_s2;
+  opt.gravity_m_s2 = raise * kGravityFactor * physics.gravity_m_s2;
   opt.dt_s = dt_s;
   opt.threads = threads;
   opt.seed = 1;
@@ -79,13 +100,35 @@ CostProbe probe_sphere_step_cost(const PhysicsSpec& physics, const BodyDef& body
   fs.region.hi_m = Vec3(side - reach, side - reach, height);
   const double cpu0 = run_cpu_seconds(threads);
   insert_particles(sim, fs);
-  const double g = opt.gravity_m_s2.norm();
-  // The fall, at most kMaxFallSteps (a stiff material's step is short; the bed is then looser).
-  const double fall_steps = std::sqrt(2.0 * height / std::max(g, 1e-9)) / dt_s;
-  sim.run(static_cast<std::uint64_t>(std::min(fall_steps, kMaxFallSteps)));
+  sim.run(static_cast<std::uint64_t>(fall_steps));
+  std::shared_ptr<Servo> servo;
+  std::size_t lid = 0;
+  if (loaded) {
+    double top = 0.0;
+    for (std::size_t i = 0; i < sim.spheres().size(); ++i)
+      top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+    Wall w;
+    w.name = "probe lid";
+    w.shape = std::make_shared<PlaneShape>(-Vec3::UnitZ());
+    w.material = body.material;
+    w.pose.origin_m = Vec3(0.5 * side, 0.5 * side, top + kLidClearance_m);
+    servo = Servo::for_stress(-Vec3::UnitZ(), confining_stress_pa, side * side, kLidSpeed_m_s);
+    w.motion = servo;
+    lid = sim.add_wall(w);
+    for (std::uint64_t s = 0; s < kMaxLoadSteps && sim.failure().status == RunStatus::ok; s += kLoadCheckSteps) {
+      sim.run(kLoadCheckSteps);
+      if (std::abs(servo->measured_stress_pa(sim.walls()[lid]) / confining_stress_pa - 1.0) < kLoadTolerance) break;
+    }
+  }
   const double cpu1 = run_cpu_seconds(threads);
-  sim.run(kTimedSteps);
+  double stress_sum = 0.0;
+  for (std::uint64_t s = 0; s < kTimedSteps; ++s) {
+    sim.step();
+    if (servo) stress_sum += servo->measured_stress_pa(sim.walls()[lid]);
+  }
   const double cpu2 = run_cpu_seconds(threads);
+  res.confining_stress_pa = confining_stress_pa;
+  if (servo) res.measured_stress_pa = stress_sum / static_cast<double>(kTimedSteps);
   res.bodies = sim.bodies().size();
   res.spheres = sim.spheres().size();
   res.timed_steps = kTimedSteps;

@@ -214,8 +214,9 @@ RunPlan plan_direct_shear(const DirectShearSpec& spec) {
                       0.5 * p.spheres, true});
   p.phases.push_back({"settle", settle_time_s(H + guide, g, kSettleMaxTime_s), p.spheres, true});
   // The cap closes its start clearance and the bed's response to the stress dies out.
-  p.phases.push_back({"consolidate", settle_time_s(0.0, g, spec.consolidation_max_time_s), specimen, true});
-  p.phases.push_back({"shear", spec.shear_displacement_m / spec.shear_speed_m_s, specimen, false});
+  p.phases.push_back({"consolidate", settle_time_s(0.0, g, spec.consolidation_max_time_s), specimen, true,
+                      spec.normal_stress_pa});
+  p.phases.push_back({"shear", spec.shear_displacement_m / spec.shear_speed_m_s, specimen, false, spec.normal_stress_pa});
   return p;
 }
 

@@ -18,6 +18,10 @@ struct PlanPhase {
   double simulated_s = 0.0;  // simulated time of the phase
   double spheres = 0.0;      // mean number of spheres in the world during the phase
   bool estimated = false;    // ends on a criterion: simulated_s is an estimate
+  // The stress a servo holds on the bed during the phase (the shear box's consolidation and shear),
+  // Pa; 0 when none. Under it each surface sphere of a fine clump holds several contacts, so the
+  // cost probe prices such a phase on a bed loaded to it.
+  double confining_stress_pa = 0.0;
 };
 
 struct RunPlan {
