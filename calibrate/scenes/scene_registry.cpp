@@ -41,6 +41,10 @@ void add_run_report(nlohmann::json& j, const RunReport& r) {
   j["stop_reason"] = r.stop_reason;
   j["status"] = to_string(r.failure.status);
   j["deepest_overlap_fraction"] = r.deepest_overlap_fraction;
+  j["phases"] = nlohmann::json::array();
+  for (const PhaseRecord& p : r.phases)
+    j["phases"].push_back(
+        {{"name", p.name}, {"simulated_s", p.simulated_s}, {"steps", p.steps}, {"cpu_seconds", p.cpu_seconds}});
   if (r.failure.status != RunStatus::ok) {
     j["failure"] = {{"step", r.failure.step},
                     {"time_s", r.failure.time_s},
@@ -121,9 +125,13 @@ nlohmann::json run_one(const SceneRunner& runner, const toml::value& doc, const 
   RunPlan plan;
   if (!ctx.check_only) c.plan = &plan;
   nlohmann::json run = runner(root, c);
-  if (!ctx.check_only)
+  if (!ctx.check_only) {
     run["plan"] = {{"simulated_s", plan.simulated_s()}, {"steps", plan.steps()}, {"seeds", plan.seeds},
                    {"spheres", plan.spheres}, {"sphere_steps", plan.sphere_steps()}};
+    run["plan"]["phases"] = nlohmann::json::array();
+    for (const PlanPhase& p : plan.phases)
+      run["plan"]["phases"].push_back({{"name", p.name}, {"simulated_s", p.simulated_s}, {"spheres", p.spheres}});
+  }
   // The config's warnings (a clump with a buried sphere) beside the scene's own.
   for (const std::string& w : diag->warnings) run["warnings"].push_back(w);
   if (trajectory) {

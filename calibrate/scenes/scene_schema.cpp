@@ -40,6 +40,7 @@ const std::vector<SchemaMetric>& run_report_metrics() {
        "deepest overlap over the smaller sphere's radius where it passed half of it (beyond Hertz "
        "theory's small-overlap range; only a clump's spheres go on past it), 0 when none did"},
       {"failure", "", "where and why a stopped run failed: step, time_s, body, message"},
+      {"phases", "", "each phase of the protocol as it ran, named as in `plan`: name, simulated_s, steps, cpu_seconds"},
       {"fidelity", "", "the rig the run used (`paper` or `quick`)"},
       {"particle", "", "the seed model: clump file or inline spheres, size distribution"},
   };

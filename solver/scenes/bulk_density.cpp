@@ -65,6 +65,7 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   fs.region.lo_m = Vec3(0.0, 0.0, 0.3 * c.z());
   fs.region.hi_m = Vec3(c.x(), c.y(), c.z() + collar);
   double poured = 0.0;
+  begin_phase(res.run, sim, "pour");
   for (int batch = 0; batch < kPourBatches && poured < fs.total_mass_kg; ++batch) {
     FactorySpec b = fs;
     b.total_mass_kg = fs.total_mass_kg - poured;
@@ -80,6 +81,7 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
     fs.region.lo_m.z() = std::min(top, c.z() + collar - 0.02);
   }
   res.seeds_poured = sim.bodies().size();
+  begin_phase(res.run, sim, "settle");
   SettleResult st;
   if (sim.failure().status == RunStatus::ok) {
     SettleCriteria sc;

@@ -143,7 +143,9 @@ CustomResult run_custom(const CustomSpec& spec) {
                  seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
   for (const CustomWall& w : spec.walls) sim.add_wall(w.wall);
 
+  begin_phase(res.run, sim, "fill");
   pour(sim, spec, res);
+  begin_phase(res.run, sim, "settle");
   SettleResult st;
   if (sim.failure().status == RunStatus::ok) {
     SettleCriteria sc;
@@ -155,6 +157,7 @@ CustomResult run_custom(const CustomSpec& spec) {
   res.settle_reason = st.reason;
 
   // The run phase: motions start at their times, samples every sample_interval_s.
+  begin_phase(res.run, sim, "run");
   res.series.resize(spec.measures.size());
   std::vector<PlaneCrossing> planes;
   for (const CustomMeasure& m : spec.measures)

@@ -75,7 +75,7 @@ void add_rings(Simulation& sim, const DirectShearSpec& spec, Rig& rig) {
 // Pours and settles the seeds, then forms the specimen: weighed in to `sample_density_kg_m3`
 // (the lowest seeds up to its mass, the last one kept when that brings the mass closer), or
 // levelled (seeds whose centre lies above the sample height removed). Returns its mass.
-double form_specimen(Simulation& sim, const DirectShearSpec& spec) {
+double form_specimen(Simulation& sim, const DirectShearSpec& spec, RunReport& report) {
   const double R = 0.5 * spec.diameter_m, H = spec.sample_height_m;
   const double area = std::numbers::pi * R * R;
   const double rho = spec.physics.materials[spec.seeds.body.material].density_kg_m3;
@@ -86,10 +86,12 @@ double form_specimen(Simulation& sim, const DirectShearSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.5 * H);
   fs.region.height_m = 0.5 * H + spec.pour_height_factor * H;
+  begin_phase(report, sim, "pour");
   pour_seeds(sim, fs, area * H * rho * kPourSolidFraction, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
   sc.max_time_s = kSettleMaxTime_s;
   sc.check_interval_s = 0.005;
+  begin_phase(report, sim, "settle");
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   double mass = 0.0;
   if (spec.sample_density_kg_m3 > 0.0) {
@@ -237,10 +239,12 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
                  seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
   Rig rig;
   add_rings(sim, spec, rig);
-  res.sample_mass_kg = form_specimen(sim, spec);
+  res.sample_mass_kg = form_specimen(sim, spec, res.run);
   res.seeds = sim.bodies().size();
   add_cap(sim, spec, rig);
+  begin_phase(res.run, sim, "consolidate");
   consolidate(sim, spec, rig);
+  begin_phase(res.run, sim, "shear");
 
   // Shear: the upper ring and the cap move along +x.
   const Vec3 v(spec.shear_speed_m_s, 0.0, 0.0);

@@ -146,13 +146,16 @@ DrumResult run_drum(const DrumSpec& spec) {
   fs.scale = spec.seeds.scale;
   fs.region.lo_m = Vec3(-0.75 * R, -0.5 * D, -0.75 * R);
   fs.region.hi_m = Vec3(0.75 * R, 0.5 * D, 0.6 * R);
+  begin_phase(res.run, sim, "pour");
   pour_seeds(sim, fs, mass, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
   sc.max_time_s = kFillSettleMaxTime_s;
   sc.check_interval_s = 0.005;
+  begin_phase(res.run, sim, "settle");
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();
 
+  begin_phase(res.run, sim, "turn");
   const double t0 = sim.time_s();
   // Rotation laws take the absolute time; shift so the turn starts now.
   struct Delayed final : WallMotion {

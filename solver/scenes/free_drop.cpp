@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "solver/core/random_rotation.hpp"
+#include "solver/scenes/seed_bed.hpp"
 #include "solver/walls/wall.hpp"
 
 namespace seedcal {
@@ -90,6 +91,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   // a hundred contact times of a seed on steel.
   constexpr double kRestEnergyRatio = 1e-6, kRestTime_s = 0.01;
   double rest_since_s = -1.0;
+  begin_phase(res.run, run, "drop");
   for (std::uint64_t s = 0; s < max_steps; ++s) {
     vz_before_touch = run.bodies().velocity_m_s[0].z();
     if (!run.step()) {
@@ -137,6 +139,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
     res.run.stop_reason = std::string("guard: ") + to_string(run.failure().status);
   }
   res.rebound_height_m = phase == Phase::rising ? std::max(0.0, apex - com_at_touch) : 0.0;
+  end_phase(res.run, run);
   res.run.steps = run.step_count();
   res.run.deepest_overlap_fraction = run.deepest_overlap_fraction();
   res.run.bodies = 1;

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "solver/scenes/seed_bed.hpp"
+
 namespace seedcal {
 namespace {
 
@@ -67,6 +69,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   const auto steps = static_cast<std::uint64_t>(std::llround(spec.duration_s / opt.dt_s));
   bool in_first_impact = false, first_impact_done = false;
   res.run.stop_reason = "duration reached";
+  begin_phase(res.run, sim, "impact");
   for (std::uint64_t s = 0; s < steps; ++s) {
     if (!sim.step()) {
       res.run.failure = sim.failure();
@@ -101,6 +104,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
     const std::uint32_t b = sim.index_of(id);
     res.final_states.push_back({B.position_m[b], B.velocity_m_s[b], B.angular_velocity[b]});
   }
+  end_phase(res.run, sim);
   res.run.steps = sim.step_count();
   res.run.deepest_overlap_fraction = sim.deepest_overlap_fraction();
   res.run.bodies = B.size();

@@ -155,10 +155,12 @@ PilingResult run_piling(const PilingSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.3 * spec.fill_height_m);
   fs.region.height_m = tube_h - 0.3 * spec.fill_height_m;
+  begin_phase(res.run, sim, "pour");
   pour_seeds(sim, fs, pour_kg, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
   sc.max_time_s = kFillSettleMaxTime_s;
   sc.check_interval_s = 0.005;
+  begin_phase(res.run, sim, "settle");
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();
   double top = 0.0;
@@ -173,6 +175,7 @@ PilingResult run_piling(const PilingSpec& spec) {
     seed_size = std::max(seed_size, 2.0 * (s.offset_m.norm() + s.radius_m));
   seed_size *= spec.seeds.scale.mean;
   const double lift = top + kLiftBeyondTop_m;
+  begin_phase(res.run, sim, "lift");
   const double t0 = sim.time_s();
   sim.walls()[tube_index].motion = std::make_shared<Schedule>(
       std::vector<Schedule::Segment>{{t0, t0 + lift / spec.lift_speed_m_s, Vec3(0, 0, spec.lift_speed_m_s)}});
@@ -187,6 +190,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   sim.walls()[tube_index].motion = nullptr;
   sim.walls()[tube_index].pose.velocity_m_s.setZero();
   SettleResult heap;
+  begin_phase(res.run, sim, "heap");
   if (sim.failure().status == RunStatus::ok) {
     sc.max_time_s = spec.max_time_s;
     sc.min_time_s = kHeapMinTime_s;

@@ -50,7 +50,21 @@ TimeStepLimits time_step_limits(const Simulation& sim, double expected_impact_sp
 // Picks dt from the spec or throws SettingError("dt_s" / "rayleigh_fraction") naming the limit.
 double choose_time_step(const TimeStepSpec& spec, const TimeStepLimits& limits);
 
+// One phase of a scene's protocol as it ran (pour, settle, consolidate, shear, ...), named as the
+// plan names it (run_plan.hpp): metrics.json shows it beside the plan's, so a run says where its
+// time went and the plan's estimate of a phase that ends on a criterion can be checked.
+struct PhaseRecord {
+  std::string name;
+  double simulated_s = 0.0;
+  std::uint64_t steps = 0;
+  double cpu_seconds = 0.0;
+  // Where the phase began (the simulation's time, step count and CPU clock), until it is closed.
+  double start_time_s = 0.0, start_cpu_s = 0.0;
+  std::uint64_t start_step = 0;
+};
+
 struct RunReport {
+  std::vector<PhaseRecord> phases;  // in order; begin_phase() opens one, finish_report() closes the last
   double cpu_seconds = 0.0;
   double wall_seconds = 0.0;
   std::uint64_t steps = 0;

@@ -90,10 +90,29 @@ std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation&
   return out;
 }
 
+void end_phase(RunReport& r, const Simulation& sim) {
+  if (r.phases.empty()) return;
+  PhaseRecord& p = r.phases.back();
+  p.simulated_s = sim.time_s() - p.start_time_s;
+  p.steps = sim.step_count() - p.start_step;
+  p.cpu_seconds = run_cpu_seconds(sim.options().threads) - p.start_cpu_s;
+}
+
+void begin_phase(RunReport& r, const Simulation& sim, const std::string& name) {
+  end_phase(r, sim);
+  PhaseRecord p;
+  p.name = name;
+  p.start_time_s = sim.time_s();
+  p.start_step = sim.step_count();
+  p.start_cpu_s = run_cpu_seconds(sim.options().threads);
+  r.phases.push_back(std::move(p));
+}
+
 void finish_report(RunReport& r, Simulation& sim, double cpu0_s,
                    std::chrono::steady_clock::time_point wall_t0) {
   if (sim.failure().status == RunStatus::ok && !sim.final_check())
     r.stop_reason = std::string("guard: ") + to_string(sim.failure().status);
+  end_phase(r, sim);
   r.failure = sim.failure();
   r.steps = sim.step_count();
   r.deepest_overlap_fraction = sim.deepest_overlap_fraction();

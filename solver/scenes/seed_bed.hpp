@@ -43,7 +43,12 @@ double pour_seeds(Simulation& sim, const FactorySpec& spec, double mass_kg, int 
 // World spheres of every body (for pictures).
 std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation& sim);
 
-// Fills the counters and timings of a scene's run report.
+// Opens the protocol phase `name` of a run at the simulation's current time (closing the phase
+// before it): PhaseRecord. end_phase() closes the open one now (finish_report() does).
+void begin_phase(RunReport& r, const Simulation& sim, const std::string& name);
+void end_phase(RunReport& r, const Simulation& sim);
+
+// Fills the counters and timings of a scene's run report, closing its last phase.
 // Runs the simulation's final guard check first (a failure there is reported like any other).
 void finish_report(RunReport& r, Simulation& sim, double cpu0_s,
                    std::chrono::steady_clock::time_point wall_t0);

@@ -37,6 +37,20 @@ inline void expect_run_report(const nlohmann::json& j) {
     const double ratio = r["steps"].get<double>() / r["plan"]["steps"].get<double>();
     EXPECT_GT(ratio, 0.5) << "steps " << r["steps"] << ", planned " << r["plan"].dump();
     EXPECT_LT(ratio, 2.0) << "steps " << r["steps"] << ", planned " << r["plan"].dump();
+    // The phases as they ran, named and ordered as the plan's, account for every step and for no
+    // more CPU time than the run's (the set-up before the first phase is the run's alone).
+    ASSERT_TRUE(r.contains("phases")) << r.dump(1);
+    ASSERT_EQ(r["phases"].size(), r["plan"]["phases"].size()) << r["phases"].dump() << r["plan"].dump();
+    std::uint64_t steps = 0;
+    double cpu = 0.0;
+    for (std::size_t k = 0; k < r["phases"].size(); ++k) {
+      EXPECT_EQ(r["phases"][k]["name"], r["plan"]["phases"][k]["name"]);
+      EXPECT_GE(r["phases"][k]["simulated_s"].get<double>(), 0.0);
+      steps += r["phases"][k]["steps"].get<std::uint64_t>();
+      cpu += r["phases"][k]["cpu_seconds"].get<double>();
+    }
+    EXPECT_EQ(steps, r["steps"].get<std::uint64_t>());
+    EXPECT_LE(cpu, r["cpu_seconds"].get<double>() * (1.0 + 1e-9));
   }
 }
 
