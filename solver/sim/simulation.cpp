@@ -129,7 +129,15 @@ void Simulation::set_body_motion(std::uint32_t b, const Vec3& v, const Vec3& w) 
   bodies_.angular_velocity[b] = w;
   bodies_.angular_momentum[b] =
       angular_momentum_from_velocity(bodies_.orientation[b], bodies_.principal_inertia[b], w);
+  // Running: the guard needs the new reference now (ensure_ready() takes it before the first step).
   reference_energy_j_ = -1.0;
+  if (ready_) take_energy_reference();
+}
+
+void Simulation::take_energy_reference() {
+  reference_energy_j_ = energy_budget_j();
+  reference_potential_j_ = potential_energy_j();
+  wall_work_j_ = 0.0;
 }
 
 double Simulation::rayleigh_time_step_s() const {
@@ -159,11 +167,7 @@ void Simulation::ensure_ready() {
   rebuild_lists();
   ready_ = true;
   compute_forces(false);
-  if (reference_energy_j_ < 0.0) {
-    reference_energy_j_ = energy_budget_j();
-    reference_potential_j_ = potential_energy_j();
-    wall_work_j_ = 0.0;
-  }
+  if (reference_energy_j_ < 0.0) take_energy_reference();
 }
 
 void Simulation::rebuild_lists() {

@@ -158,6 +158,8 @@ class Simulation {
   // Calls the frame observer with the current state (FrameObserver) and schedules the next frame.
   void emit_frame();
   double energy_budget_j() const;
+  // The energy guard's reference, now: the budget, the potential energy and no walls' work yet.
+  void take_energy_reference();
   void rebuild_lists();
   void update_work_shares();
   // Returns true when the bodies were renumbered (the neighbour lists are then rebuilt).

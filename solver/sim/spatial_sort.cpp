@@ -158,11 +158,7 @@ void Simulation::remove_bodies(const std::function<bool(std::uint32_t index)>& r
   if (keep.size() == bodies_.size()) return;
   reorder_bodies(keep);
   reference_energy_j_ = -1.0;
-  if (ready_) {
-    reference_energy_j_ = energy_budget_j();
-    reference_potential_j_ = potential_energy_j();
-    wall_work_j_ = 0.0;
-  }
+  if (ready_) take_energy_reference();
 }
 
 }  // namespace seedcal

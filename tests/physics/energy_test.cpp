@@ -208,5 +208,14 @@ TEST(Energy, GuardStopsABlowUpUnderAWorkingLid) {
   EXPECT_NE(sim.failure().message.find("the work the walls did"), std::string::npos) << sim.failure().message;
 }
 
+// A body's motion set between steps of a running simulation (Simulation::set_body_motion) takes a
+// new energy reference at once: the guard goes on judging against it, not against none.
+TEST(Energy, MotionSetMidRunKeepsTheGuardsReference) {
+  Simulation sim = elastic_bed(six_cubed());
+  ASSERT_TRUE(sim.run(10)) << sim.failure().message;
+  sim.set_body_motion(0, Vec3(0.1, 0.0, 0.0), Vec3::Zero());
+  EXPECT_TRUE(sim.run(1000)) << sim.failure().message;  // five energy checks
+}
+
 }  // namespace
 }  // namespace seedcal
