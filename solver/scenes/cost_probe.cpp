@@ -12,8 +12,8 @@ namespace {
 
 // About 1,500 spheres: enough that the per-step fixed costs do not count, few enough that the
 // probe costs a small part of one run of a bulk scene. At least 12 bodies: a fine clump's seeds
-// then cover a fifth of the box's floor and touch it and some neighbours; a bed at rest of 72 of
-// them (two seeds deep) cost the same to within a nanosecond a sphere-step.
+// then cover a fifth of the box's floor and touch it and some neighbours; a bed two seeds deep
+// costs the same a sphere-step (docs/results/cost_estimate.md).
 constexpr double kProbeSpheres = 1500.0;
 constexpr std::size_t kMinBodies = 12, kMaxBodies = 400;
 // A loaded bed: at least 160 bodies, two to three seeds deep in the box below (six seed lengths
@@ -30,7 +30,7 @@ constexpr std::uint64_t kLoadCheckSteps = 100, kMaxLoadSteps = 40000;
 // the fall time from the region's top (the last half for the bed's collisions to die out), in at
 // most kMaxFallSteps or kMaxFallSphereSteps sphere-steps, whichever allows more; where that is too
 // few (a fine clump at its short step) gravity is raised further so the fall fits: a bed still in
-// flight, whose spheres touch nothing, priced a fine clump at a third of its cost.
+// flight, whose spheres touch nothing, would price a fine clump far below its cost.
 constexpr double kGravityFactor = 5.0;
 constexpr double kRegionSolidFraction = 0.15;
 constexpr std::uint64_t kTimedSteps = 1000;
