@@ -75,10 +75,7 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
     if (r.placed == 0) break;
     if (!run_for(sim, kPourBatchInterval_s)) break;  // let the batch fall and make room
     // Later batches go above what is already there.
-    double top = 0.0;
-    for (std::size_t i = 0; i < sim.spheres().size(); ++i)
-      top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
-    fs.region.lo_m.z() = std::min(top, c.z() + collar - 0.02);
+    fs.region.lo_m.z() = std::min(highest_point_m(sim), c.z() + collar - 0.02);
   }
   res.seeds_poured = sim.bodies().size();
   begin_phase(res.run, sim, "settle");

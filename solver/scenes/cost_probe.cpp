@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "solver/scenes/seed_bed.hpp"
 #include "solver/sim/particle_factory.hpp"
 #include "solver/walls/box_shape.hpp"
 #include "solver/walls/servo_wall.hpp"
@@ -105,9 +106,7 @@ CostProbe probe_sphere_step_cost(const PhysicsSpec& physics, const BodyDef& body
   std::shared_ptr<Servo> servo;
   std::size_t lid = 0;
   if (loaded) {
-    double top = 0.0;
-    for (std::size_t i = 0; i < sim.spheres().size(); ++i)
-      top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+    const double top = highest_point_m(sim);
     Wall w;
     w.name = "probe lid";
     w.shape = std::make_shared<PlaneShape>(-Vec3::UnitZ());

@@ -120,9 +120,7 @@ double form_specimen(Simulation& sim, const DirectShearSpec& spec, RunReport& re
 // (zj) or an unbounded plane (shells).
 void add_cap(Simulation& sim, const DirectShearSpec& spec, Rig& rig) {
   const double R = 0.5 * spec.diameter_m;
-  double top = 0.0;
-  for (std::size_t i = 0; i < sim.spheres().size(); ++i)
-    top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+  const double top = highest_point_m(sim);
   Wall cap;
   cap.name = "lid";
   cap.material = spec.box_material;

@@ -163,9 +163,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   begin_phase(res.run, sim, "settle");
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();
-  double top = 0.0;
-  for (std::size_t i = 0; i < sim.spheres().size(); ++i)
-    top = std::max(top, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
+  const double top = highest_point_m(sim);
   // Lift the tube at the set speed until its lower rim clears the highest seed by a seed size
   // (checked every 10 ms): from then on nothing can touch it, so the tube stops there. The fill
   // drains as the tube rises, so the rim clears the seeds well below the fill's initial top
@@ -181,10 +179,7 @@ PilingResult run_piling(const PilingSpec& spec) {
       std::vector<Schedule::Segment>{{t0, t0 + lift / spec.lift_speed_m_s, Vec3(0, 0, spec.lift_speed_m_s)}});
   while (sim.failure().status == RunStatus::ok && sim.time_s() < t0 + lift / spec.lift_speed_m_s) {
     run_for(sim, 0.01);
-    double highest = 0.0;
-    for (std::size_t i = 0; i < sim.spheres().size(); ++i)
-      highest = std::max(highest, sim.spheres().position_m[i].z() + sim.spheres().radius_m[i]);
-    if (sim.walls()[tube_index].pose.origin_m.z() > highest + seed_size) break;
+    if (sim.walls()[tube_index].pose.origin_m.z() > highest_point_m(sim) + seed_size) break;
   }
   res.lift_m = sim.walls()[tube_index].pose.origin_m.z();
   sim.walls()[tube_index].motion = nullptr;

@@ -78,6 +78,13 @@ double pour_seeds(Simulation& sim, const FactorySpec& spec, double mass_kg, int 
   return poured;
 }
 
+double highest_point_m(const Simulation& sim) {
+  const SphereState& S = sim.spheres();
+  double top = 0.0;
+  for (std::size_t i = 0; i < S.size(); ++i) top = std::max(top, S.position_m[i].z() + S.radius_m[i]);
+  return top;
+}
+
 std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation& sim) {
   const BodyState& B = sim.bodies();
   std::vector<std::vector<std::pair<Vec3, double>>> out;

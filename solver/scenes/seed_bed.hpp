@@ -40,6 +40,9 @@ SimulationOptions seed_options(const PhysicsSpec& physics, double dt_s, int thre
 // batch fall for `fall_s` to make room for the next. Returns the mass placed.
 double pour_seeds(Simulation& sim, const FactorySpec& spec, double mass_kg, int batches, double fall_s);
 
+// The highest point of any sphere (centre z + radius), m; 0 (the floor) with none above it.
+double highest_point_m(const Simulation& sim);
+
 // World spheres of every body (for pictures).
 std::vector<std::vector<std::pair<Vec3, double>>> body_spheres(const Simulation& sim);
 
