@@ -325,4 +325,48 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   return report;
 }
 
+nlohmann::json keep_pick_in_posterior(const StudyConfig& s, PipelineState& st, StudyStore& store) {
+  if (!st.curve.is_object() || !st.curve.contains("picked") || !st.curve_verification.is_object() ||
+      !st.posterior.is_object() || !st.posterior.contains("calibrated_interval") || !st.posterior.contains("median"))
+    return nullptr;
+  const nlohmann::json& interval = st.posterior["calibrated_interval"];
+  const nlohmann::json& median = st.posterior["median"];
+  Eigen::VectorXd moved = st.chosen;
+  std::string outside;
+  for (const int j : st.kept) {
+    const std::string& path = s.parameters[static_cast<std::size_t>(j)].path;
+    if (!interval.contains(path) || !median.contains(path)) return nullptr;
+    const double lo = interval[path][0].get<double>(), hi = interval[path][1].get<double>(), v = st.chosen(j);
+    const std::string what = path + " " + curve_number(v) + " (95 % interval " + curve_number(lo) + " .. " + curve_number(hi) + ")";
+    if (v < lo || v > hi) outside += (outside.empty() ? "" : ", ") + what;
+    moved(j) = median[path].get<double>();
+  }
+  if (outside.empty()) return nullptr;
+  const bool on_curve = st.curve_mode == "curve";
+  const std::string reason =
+      "the " + std::string(on_curve ? "line's" : "plane's") + " point lies outside the 95 % interval that the target and " +
+      "the test give together: " + outside + "; the data put it among the values they favour least, so the calibrated " +
+      "point is the posterior's median";
+  st.curve["picked_by_" + std::string(on_curve ? "line" : "plane")] = st.curve["picked"];
+  st.chosen = moved;
+  st.curve["picked"] = natural_of(s, st, st.chosen);
+  st.curve["moved_to_posterior_median"] = reason;
+
+  // The test's verification from the curve's runs, read at the new point: the model's mean there,
+  // and its standard error without the posterior's widening.
+  const Eigen::VectorXd f = curve_features(st, box_coded(st, st.chosen));
+  const double widening = st.curve["response_model"].value("posterior_variance_factor", 1.0);
+  const double mean = f.dot(st.curve_beta), mean_se = std::sqrt(std::max(0.0, f.dot(st.curve_cov * f) / widening));
+  nlohmann::json& v = st.curve_verification;
+  const double experiment = v["experimental_mean"].get<double>();
+  v["mean"] = mean;
+  v["mean_se"] = mean_se;
+  v["rel_error"] = mean / experiment - 1.0;
+  if (v["experimental_sd"].is_number()) v["within_sd"] = std::fabs(mean - experiment) <= v["experimental_sd"].get<double>();
+  v["source"] = v["source"].get<std::string>() + ", read at the posterior's median";
+  st.curve["verification"] = v;
+  store.set_stage(st.stage_prefix + "curve", st.curve);
+  return {{"reason", reason}, {"picked", st.curve["picked"]}};
+}
+
 }  // namespace seedcal

@@ -69,6 +69,15 @@ class CurvePick : public ::testing::Test {
     std::filesystem::remove(dir_ + "/study.h5");
     return r;
   }
+  // keep_pick_in_posterior after a pick, with the posterior the target and the test gave together
+  // (here set by hand: its 95 % intervals and median).
+  nlohmann::json keep_in(const nlohmann::json& interval, const nlohmann::json& median) {
+    st_.posterior = {{"identified", {{"a", false}, {"b", false}}}, {"calibrated_interval", interval}, {"median", median}};
+    StudyStore store = StudyStore::create(dir_ + "/study.h5", {"hash", study_.text, "test", "now"});
+    const nlohmann::json r = keep_pick_in_posterior(study_, st_, store);
+    std::filesystem::remove(dir_ + "/study.h5");
+    return r;
+  }
   std::string dir_;
   StudyConfig study_;
   PipelineState st_;
@@ -117,6 +126,44 @@ TEST_F(CurvePick, BeyondTheBoxThePointNearestInResponseIsPicked) {
   EXPECT_TRUE(r.contains("at_end")) << r.dump(1);
   EXPECT_NEAR(st_.chosen(0), 1.0, kExact);
   EXPECT_NEAR(st_.chosen(1), 1.0, kExact);
+}
+
+TEST_F(CurvePick, APickOutsideThePosteriorsIntervalMovesToItsMedian) {
+  // The plane meets the experiment beyond the box, so the corner (1, 1) is picked; a posterior
+  // whose 95 % intervals stop short of it moves the point to its median, and the test's
+  // verification is the plane there (exact: the response is a plane).
+  pick([](double a, double b) { return 10.0 + 2.0 * a + b; });
+  ASSERT_NEAR(st_.chosen(0), 1.0, kExact);
+  const auto r = keep_in({{"a", {0.02, 0.98}}, {"b", {0.1, 0.9}}}, {{"a", 0.5}, {"b", 0.45}});
+  ASSERT_FALSE(r.is_null());
+  EXPECT_NE(r["reason"].get<std::string>().find("a 1 (95 % interval 0.02 .. 0.98), b 1 (95 % interval 0.1 .. 0.9)"),
+            std::string::npos)
+      << r.dump(1);
+  EXPECT_EQ(st_.chosen(0), 0.5);
+  EXPECT_EQ(st_.chosen(1), 0.45);
+  EXPECT_EQ(st_.curve["picked"]["a"], 0.5);
+  EXPECT_EQ(st_.curve["picked_by_plane"]["a"], 1.0);
+  EXPECT_TRUE(st_.curve.contains("moved_to_posterior_median"));
+  EXPECT_NEAR(st_.curve_verification["mean"].get<double>(), 10.0 + 2.0 * 0.5 + 0.45, kExact);
+  EXPECT_NEAR(st_.curve_verification["rel_error"].get<double>(), 11.45 / 13.3 - 1.0, kExact);
+  EXPECT_EQ(st_.curve["verification"], st_.curve_verification);
+}
+
+TEST_F(CurvePick, APickInsideThePosteriorsIntervalStays) {
+  st_.curve_path = doe::CurvePath({Eigen::Vector2d(-1.0, -1.0), Eigen::Vector2d(1.0, 1.0)});
+  pick([](double a, double b) { return 10.0 + 4.0 * a + b; });
+  const double mean = st_.curve_verification["mean"].get<double>();
+  EXPECT_TRUE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.6, 0.7}}}, {{"a", 0.65}, {"b", 0.65}}).is_null());
+  EXPECT_NEAR(st_.chosen(0), 0.66, kExact);
+  EXPECT_NEAR(st_.chosen(1), 0.66, kExact);
+  EXPECT_FALSE(st_.curve.contains("moved_to_posterior_median"));
+  EXPECT_EQ(st_.curve_verification["mean"].get<double>(), mean);
+  // One parameter outside is enough: both move to the median (the point stays on the posterior's
+  // ridge, not half on the line's pick).
+  EXPECT_FALSE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.2, 0.6}}}, {{"a", 0.65}, {"b", 0.4}}).is_null());
+  EXPECT_EQ(st_.chosen(0), 0.65);
+  EXPECT_EQ(st_.chosen(1), 0.4);
+  EXPECT_TRUE(st_.curve.contains("picked_by_line"));
 }
 
 TEST_F(CurvePick, AFlatTestKeepsTheConfirmedPoint) {

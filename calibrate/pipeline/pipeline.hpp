@@ -107,6 +107,13 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
 // else those with an experimental value, and of them the ones with a laboratory sd when any has
 // one (their answers along the curve are then compared in sd).
 std::vector<int> curve_candidates(const StudyConfig& s);
+// After the posterior has been taken with the curve test: a picked point outside the 95 %
+// interval the target and the test give together (a line extrapolated to the curve's end, a slope
+// that is mostly scatter) is among the values the data favour least, so the calibrated point
+// becomes the posterior's median (inside every central interval by construction), and the
+// test's verification from the curve's runs is read there. Returns the report's entry (null
+// when the pick stays); the curve stage's report keeps the line's or plane's own pick.
+nlohmann::json keep_pick_in_posterior(const StudyConfig& s, PipelineState& st, StudyStore& store);
 // The terms of the curve test's response model at box-coded u: (1, s) with s the arc length of
 // u's projection onto the curve, or (1, u1, u2); and the model's mean and the variance of that mean.
 Eigen::VectorXd curve_features(const PipelineState& st, const Eigen::VectorXd& u);

@@ -249,6 +249,11 @@ void calibrate_stages(StudyEvaluator& ev, PipelineState& st, StudyStore& store, 
     progress.log("curve" + who + ": " + curve["test"].get<std::string>() + " along the solution curve, picked " +
                  curve["picked"].dump() + (curve.contains("note") ? " (" + curve["note"].get<std::string>() + ")" : ""));
     log_identified("posterior with " + curve["test"].get<std::string>(), run_posterior(ev, st, store));
+    const nlohmann::json moved = keep_pick_in_posterior(s, st, store);
+    if (!moved.is_null()) {
+      progress.log("curve" + who + ": " + moved["reason"].get<std::string>() + ": " + moved["picked"].dump());
+      run_posterior(ev, st, store);  // its edge flags, for the point now calibrated
+    }
   }
   checkpoint("curve");
 }
