@@ -246,7 +246,8 @@ void calibrate_stages(StudyEvaluator& ev, PipelineState& st, StudyStore& store, 
   if (curve.contains("skipped")) {
     progress.log("curve" + who + ": not run: " + curve["skipped"].get<std::string>());
   } else {
-    progress.log("curve" + who + ": " + curve["test"].get<std::string>() + " along the solution curve, picked " +
+    progress.log("curve" + who + ": " + curve["test"].get<std::string>() +
+                 (curve.value("mode", std::string()) == "region" ? " at the box's corners" : " along the solution curve") + ", picked " +
                  curve["picked"].dump() + (curve.contains("note") ? " (" + curve["note"].get<std::string>() + ")" : ""));
     log_identified("posterior with " + curve["test"].get<std::string>(), run_posterior(ev, st, store));
     const nlohmann::json moved = keep_pick_in_posterior(s, st, store);
