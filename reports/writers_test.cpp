@@ -250,6 +250,32 @@ TEST(Report, OneFactorSurfaceIsAProfile) {
   fs::remove_all(dir);
 }
 
+// A curve pick that the posterior put outside its interval: the curve section names the line's own
+// point and why the calibrated point is the posterior's median.
+TEST(Report, CurveSectionSaysWhenThePickMovedToThePosteriorsMedian) {
+  StudyData d;
+  d.summary.emplace();
+  d.summary->curve = nlohmann::json::parse(R"({
+    "mode": "curve", "test": "piling", "choice_rule": "named by the study", "model": "m", "metric": "angle_of_repose_deg",
+    "experimental_mean": 31.76, "experimental_sd": 1.16, "s_picked": 0.0,
+    "points": [{"s": 0.0, "at": {"mu_s": 0.9}, "value": 38.0, "seed": 1, "status": "ok"},
+               {"s": 1.0, "at": {"mu_s": 0.3}, "value": 37.0, "seed": 2, "status": "ok"}],
+    "response_model": {"terms": "y = intercept + s * s_arc", "coefficients": {"intercept": 38.0, "s": -1.0},
+                       "standard_errors": {"intercept": 1.0, "s": 1.5}, "residual_sd": 1.0, "df": 0, "r2": 1.0, "p_slope": 0.7},
+    "at_end": "the line meets the experiment beyond the curve's start (s = -6.24): the end is picked",
+    "picked_by_line": {"mu_s": 0.9}, "picked": {"mu_s": 0.61},
+    "moved_to_posterior_median": "the line's point lies outside the 95 % interval that the target and the test give together"})");
+  const Document doc = build_report(d);
+  const auto it = std::find_if(doc.sections.begin(), doc.sections.end(), [](const Section& s) { return s.id == "curve"; });
+  ASSERT_NE(it, doc.sections.end());
+  std::string text;
+  for (const auto& b : it->blocks)
+    if (const auto* p = std::get_if<Paragraph>(&b)) text += p->text + "\n";
+  EXPECT_NE(text.find("The line picked s = 0: mu_s = 0.9."), std::string::npos) << text;
+  EXPECT_NE(text.find("But the line's point lies outside the 95 % interval"), std::string::npos) << text;
+  EXPECT_NE(text.find(": mu_s = 0.61."), std::string::npos) << text;
+}
+
 TEST(Report, RepeatedIdsAreMadeUnique) {
   Document doc;
   Section s{"s", "S", {}};
