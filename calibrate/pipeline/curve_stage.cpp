@@ -50,6 +50,15 @@ nlohmann::json natural_of(const StudyConfig& s, const PipelineState& st, const E
   return p;
 }
 
+// The curve test's verification read at a point: the test's model's mean there with its standard
+// error, against the experiment (`sd` the laboratory's; 0 where it gives none).
+void set_verification_mean(nlohmann::json& v, double mean, double mean_se, double experiment, double sd) {
+  v["mean"] = mean;
+  v["mean_se"] = mean_se;
+  v["rel_error"] = mean / experiment - 1.0;
+  v["within_sd"] = sd > 0.0 ? nlohmann::json(std::fabs(mean - experiment) <= sd) : nlohmann::json(nullptr);
+}
+
 // The region design: the four corners of the box, the (1, 1) corner last (the pilot compares the
 // two ends of the diagonal), centre points between for more than four points.
 Eigen::Vector2d region_point(int i, int n) {
@@ -310,13 +319,11 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
   const double mean_se = std::sqrt(std::max(0.0, sigma2 * f_pick.dot(fit.unscaled_covariance * f_pick)));
   nlohmann::json v = {{"test", test.name}, {"label", test.name}, {"metric", test.metric}, {"role", "verification"},
                       {"n", ys.size()}, {"samples", samples}, {"seeds", seeds}, {"cpu_seconds", cpu / n},
-                      {"mean", here_mean}, {"sd", std::sqrt(sigma2)}, {"sd_df", df}, {"mean_se", mean_se},
-                      {"experimental_mean", test.value},
+                      {"sd", std::sqrt(sigma2)}, {"sd_df", df}, {"experimental_mean", test.value},
                       {"experimental_sd", test.sd > 0.0 ? nlohmann::json(test.sd) : nlohmann::json(nullptr)},
-                      {"rel_error", here_mean / test.value - 1.0},
-                      {"within_sd", test.sd > 0.0 ? nlohmann::json(std::fabs(here_mean - test.value) <= test.sd) : nlohmann::json(nullptr)},
                       {"source", "the " + std::to_string(ys.size()) + " runs " + (on_curve ? "along the solution curve" : "at the box's corners") +
                                      ": the " + (on_curve ? "line" : "plane") + " fitted to them at the point, its sd the residual sd"}};
+  set_verification_mean(v, here_mean, mean_se, test.value, test.sd);
   if (!failures.empty()) v["failures"] = failures;
   st.curve_verification = v;
   report["verification"] = v;
@@ -358,11 +365,8 @@ nlohmann::json keep_pick_in_posterior(const StudyConfig& s, PipelineState& st, S
   const double widening = st.curve["response_model"].value("posterior_variance_factor", 1.0);
   const double mean = f.dot(st.curve_beta), mean_se = std::sqrt(std::max(0.0, f.dot(st.curve_cov * f) / widening));
   nlohmann::json& v = st.curve_verification;
-  const double experiment = v["experimental_mean"].get<double>();
-  v["mean"] = mean;
-  v["mean_se"] = mean_se;
-  v["rel_error"] = mean / experiment - 1.0;
-  if (v["experimental_sd"].is_number()) v["within_sd"] = std::fabs(mean - experiment) <= v["experimental_sd"].get<double>();
+  set_verification_mean(v, mean, mean_se, v["experimental_mean"].get<double>(),
+                        v["experimental_sd"].is_number() ? v["experimental_sd"].get<double>() : 0.0);
   v["source"] = v["source"].get<std::string>() + ", read at the posterior's median";
   st.curve["verification"] = v;
   store.set_stage(st.stage_prefix + "curve", st.curve);
