@@ -60,6 +60,25 @@ TEST(RigChecks, ASeedTooLargeForTheRigIsNamedWithTheKeyToChange) {
   std::filesystem::remove(clump);
 }
 
+// A one-sphere seed a hair longer than half the quick sample's height: the warning shows the
+// shortfall in as many digits as it takes, never "2.0 seed lengths, under 2".
+TEST(RigChecks, ASizeAHairUnderItsMinimumReadsAsUnderIt) {
+  const std::string clump = (std::filesystem::temp_directory_path() / "seedcal-rig-check-hair.txt").string();
+  const double height_m = 0.02;
+  // Diameter 10.0002 mm: 0.02 m is 1.99996 seed lengths.
+  std::ofstream(clump) << "0.0 0.0 0.0 " << 0.5 * 0.0100002 << "\n";
+  const auto w = rig_warnings("direct_shear", {"fidelity=quick", "particle.clump_file=" + clump, "particle.scale_sd=0",
+                                               "direct_shear.quick.sample_height_m=" + std::to_string(height_m)});
+  std::string height;
+  for (const std::string& x : w)
+    if (x.find("direct_shear.quick.sample_height_m is small") != std::string::npos) height = x;
+  ASSERT_FALSE(height.empty()) << ::testing::PrintToString(w);
+  EXPECT_EQ(height.find("2.0 seed lengths"), std::string::npos) << height;
+  EXPECT_NE(height.find("1.9999"), std::string::npos) << height;
+  EXPECT_EQ(height.find("at least 0.02 m"), std::string::npos) << height;
+  std::filesystem::remove(clump);
+}
+
 // The paper's 61.8 mm box against the larger Jinong 2 seeds (12.8 mm long, 4.8 lengths): the
 // shipped scene warns.
 TEST(RigChecks, ThePapersBoxIsSmallForJinong2) {
