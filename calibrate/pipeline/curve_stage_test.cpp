@@ -149,6 +149,30 @@ TEST_F(CurvePick, APickOutsideThePosteriorsIntervalMovesToItsMedian) {
   EXPECT_EQ(st_.curve["verification"], st_.curve_verification);
 }
 
+// The posterior's edge flags follow the calibrated point when the pick moves, without the
+// posterior being taken again: a point at the parameters' limits is flagged, the median inside the
+// intervals is not, and the store's posterior stage says the same.
+TEST_F(CurvePick, EdgeFlagsFollowThePointWhenThePickMoves) {
+  StudyStore store = StudyStore::create(dir_ + "/study.h5", {"hash", study_.text, "test", "now"});
+  st_.posterior = {{"identified", {{"a", false}, {"b", false}}}, {"at_edge", nlohmann::json::object()}};
+  st_.posterior_lo_coded = Eigen::Vector2d(-0.9, -0.8);
+  st_.posterior_hi_coded = Eigen::Vector2d(0.9, 0.8);
+  st_.chosen = Eigen::Vector2d(1.0, 1.0);
+  refresh_edge_flags(study_, st_, store);
+  EXPECT_NE(st_.posterior["at_edge"].value("a", std::string()).find("at its limit"), std::string::npos) << st_.posterior.dump(1);
+  EXPECT_NE(st_.posterior["at_edge"].value("b", std::string()).find("at its limit"), std::string::npos);
+  EXPECT_EQ(store.stages()["posterior"]["at_edge"], st_.posterior["at_edge"]);
+  st_.chosen = Eigen::Vector2d(0.5, 0.45);
+  refresh_edge_flags(study_, st_, store);
+  EXPECT_TRUE(st_.posterior["at_edge"].empty()) << st_.posterior.dump(1);
+  EXPECT_TRUE(store.stages()["posterior"]["at_edge"].empty());
+  // An interval that runs into a limit flags the value that lies inside it.
+  st_.posterior_hi_coded = Eigen::Vector2d(0.99, 0.8);
+  refresh_edge_flags(study_, st_, store);
+  EXPECT_NE(st_.posterior["at_edge"].value("a", std::string()).find("runs into its max"), std::string::npos) << st_.posterior.dump(1);
+  std::filesystem::remove(dir_ + "/study.h5");
+}
+
 TEST_F(CurvePick, APickInsideThePosteriorsIntervalStays) {
   st_.curve_path = doe::CurvePath({Eigen::Vector2d(-1.0, -1.0), Eigen::Vector2d(1.0, 1.0)});
   pick([](double a, double b) { return 10.0 + 4.0 * a + b; });

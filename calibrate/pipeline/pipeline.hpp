@@ -40,6 +40,7 @@ struct PipelineState {
   nlohmann::json solution;          // the solve stage's report
   std::map<std::string, ConfirmedTarget> confirmed;  // metric -> the last confirmation round
   nlohmann::json posterior;         // after confirmation: intervals and identification (posterior_stage.cpp)
+  Eigen::VectorXd posterior_lo_coded, posterior_hi_coded;  // its 95 % intervals, box-coded
   // The pick along the solution curve (curve_stage.cpp). The curve: one target's level set through
   // the confirmed point, box-coded, traced by the posterior stage on its refitted surrogate (not
   // usable when that surrogate misses the target everywhere in the box).
@@ -96,6 +97,9 @@ nlohmann::json run_confirmation(StudyEvaluator& ev, PipelineState& st, StudyStor
 // After confirmation: the posterior of the kept parameters over the surrogate box, their 95 %
 // credible intervals and whether each is identified (posterior_stage.cpp; docs/calibrate.md).
 nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store);
+// The posterior's `at_edge` flags for st.chosen as it is now (after the pick has moved), without
+// taking the posterior again.
+void refresh_edge_flags(const StudyConfig& s, PipelineState& st, StudyStore& store);
 // After the posterior, when one target leaves two kept parameters not both identified: a
 // verification test (the study's `curve_test`, else the one that answers most between the design's
 // ends) runs at points along the target's solution curve, or at the box's corners when it has none;

@@ -30,12 +30,60 @@ std::string fixed(double v, int digits = 3) {
   return o.str();
 }
 
+// Where kept factor q's 95 % interval (box-coded ends) meets the surrogate box: `cut_*` where the
+// box's edge is not the parameter's limit (the study has no runs beyond it, so the box, not the
+// data, ends the interval), `at_*` where the edge is the limit itself.
+struct IntervalEnds {
+  bool cut_lo = false, cut_hi = false, at_min = false, at_max = false;
+};
+
+IntervalEnds interval_ends(const StudyParameter& par, const PipelineState& st, int q, double lo_coded, double hi_coded) {
+  const double tiny = 1e-9 * (std::abs(par.max) + std::abs(par.min) + 1.0);
+  IntervalEnds e;
+  e.cut_lo = lo_coded <= -kEdgeCoded && st.box_lo(q) > par.min + tiny;
+  e.cut_hi = hi_coded >= kEdgeCoded && st.box_hi(q) < par.max - tiny;
+  e.at_min = lo_coded <= -kEdgeCoded && !e.cut_lo;
+  e.at_max = hi_coded >= kEdgeCoded && !e.cut_hi;
+  return e;
+}
+
+// The calibrated value of each kept factor (st.chosen) at the edge of its range: at its limit, at
+// the edge of the surrogate box, or with the credible interval (box-coded ends) running into a
+// limit (the data favour values at or beyond it).
+nlohmann::json chosen_at_edge(const StudyConfig& s, const PipelineState& st, const Eigen::VectorXd& lo_coded,
+                              const Eigen::VectorXd& hi_coded) {
+  nlohmann::json at_edge = nlohmann::json::object();
+  if (st.chosen.size() != static_cast<Eigen::Index>(s.parameters.size())) return at_edge;
+  for (int q = 0; q < static_cast<int>(st.kept.size()); ++q) {
+    const int j = st.kept[static_cast<std::size_t>(q)];
+    const StudyParameter& par = s.parameters[static_cast<std::size_t>(j)];
+    const IntervalEnds e = interval_ends(par, st, q, lo_coded(q), hi_coded(q));
+    const double v = st.chosen(j), half = 0.5 * (st.box_hi(q) - st.box_lo(q));
+    const double u = (v - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half;
+    const double span = par.max - par.min;
+    if (span > 0.0 && (v - par.min <= 0.01 * span || par.max - v <= 0.01 * span))
+      at_edge[par.path] = "at its limit (min " + fixed(par.min) + ", max " + fixed(par.max) + ")";
+    else if (e.at_min || e.at_max)
+      at_edge[par.path] = "next to its limit: the 95 % interval runs into its " +
+                          std::string(e.at_max ? "max " + fixed(par.max) : "min " + fixed(par.min)) +
+                          ", so the data favour values at or beyond the limit";
+    else if (std::abs(u) >= kEdgeCoded)
+      at_edge[par.path] = "at the edge of the surrogate box (" + fixed(st.box_lo(q)) + " .. " + fixed(st.box_hi(q)) + ")";
+  }
+  return at_edge;
+}
+
 }  // namespace
+
+void refresh_edge_flags(const StudyConfig& s, PipelineState& st, StudyStore& store) {
+  if (!st.posterior.is_object() || st.posterior_lo_coded.size() != static_cast<Eigen::Index>(st.kept.size())) return;
+  st.posterior["at_edge"] = chosen_at_edge(s, st, st.posterior_lo_coded, st.posterior_hi_coded);
+  store.set_stage(st.stage_prefix + "posterior", st.posterior);
+}
 
 nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyStore& store) {
   const StudyConfig& s = ev.study();
   const int k = static_cast<int>(st.kept.size());
-  const Eigen::VectorXd half = 0.5 * (st.box_hi - st.box_lo);
   nlohmann::json report = {{"prior", "uniform over the surrogate box"}, {"level", 0.95}, {"targets", nlohmann::json::array()}};
   std::vector<doe::TargetEvidence> evidence;
   std::vector<std::shared_ptr<doe::GaussianProcess>> gps;
@@ -180,7 +228,7 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
   const Eigen::VectorXd lo_n = box_point(st, p.interval_lo), hi_n = box_point(st, p.interval_hi);
   const Eigen::VectorXd mode_n = box_point(st, p.mode), median_n = box_point(st, p.median);
   nlohmann::json interval = nlohmann::json::object(), identified = nlohmann::json::object(),
-                 reasons = nlohmann::json::object(), at_edge = nlohmann::json::object(),
+                 reasons = nlohmann::json::object(),
                  mode = nlohmann::json::object(), median = nlohmann::json::object(), factors = nlohmann::json::array();
   for (int q = 0; q < k; ++q) {
     const int j = st.kept[static_cast<std::size_t>(q)];
@@ -193,9 +241,8 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     const double range = par.high - par.low, width = hi - lo;
     // An interval that runs into an edge of the box where the parameter could go on (the edge is
     // not its min or max) is cut by the box, not by the data: the study has no runs beyond it.
-    const double tiny = 1e-9 * (std::abs(par.max) + std::abs(par.min) + 1.0);
-    const bool cut_lo = p.interval_lo(q) <= -kEdgeCoded && st.box_lo(q) > par.min + tiny;
-    const bool cut_hi = p.interval_hi(q) >= kEdgeCoded && st.box_hi(q) < par.max - tiny;
+    const IntervalEnds ends = interval_ends(par, st, q, p.interval_lo(q), p.interval_hi(q));
+    const bool cut_lo = ends.cut_lo, cut_hi = ends.cut_hi;
     const bool ok = width <= kIdentifiedFraction * range && !cut_lo && !cut_hi;
     identified[par.path] = ok;
     std::string why = "95 % interval " + fixed(lo) + " .. " + fixed(hi) + ", " + fixed(100.0 * width / range, 2) +
@@ -206,26 +253,11 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
       why += std::string(width > kIdentifiedFraction * range ? "; " : ": ") +
              "the interval runs into the surrogate box's edge, beyond which the study has no runs, so the data may allow values beyond it";
     reasons[par.path] = why;
-    // At the edge of its range: the chosen value at its limit or at the edge of the surrogate box,
-    // or the credible interval running into a limit (the data favour values at or beyond it).
-    const bool at_min = p.interval_lo(q) <= -kEdgeCoded && !cut_lo, at_max = p.interval_hi(q) >= kEdgeCoded && !cut_hi;
-    if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size())) {
-      const double v = st.chosen(j), u = (v - 0.5 * (st.box_lo(q) + st.box_hi(q))) / half(q);
-      const double span = par.max - par.min;
-      if (span > 0.0 && (v - par.min <= 0.01 * span || par.max - v <= 0.01 * span))
-        at_edge[par.path] = "at its limit (min " + fixed(par.min) + ", max " + fixed(par.max) + ")";
-      else if (at_min || at_max)
-        at_edge[par.path] = "next to its limit: the 95 % interval runs into its " +
-                            std::string(at_max ? "max " + fixed(par.max) : "min " + fixed(par.min)) +
-                            ", so the data favour values at or beyond the limit";
-      else if (std::abs(u) >= kEdgeCoded)
-        at_edge[par.path] = "at the edge of the surrogate box (" + fixed(st.box_lo(q)) + " .. " + fixed(st.box_hi(q)) + ")";
-    }
   }
   report["calibrated_interval"] = interval;
   report["identified"] = identified;
   report["reasons"] = reasons;
-  report["at_edge"] = at_edge;
+  report["at_edge"] = chosen_at_edge(s, st, p.interval_lo, p.interval_hi);
   report["mode"] = mode;
   report["median"] = median;
   // The credible region for pictures (two leading factors): the density on a 41 x 41 grid over the
@@ -246,6 +278,8 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     report["region_grid"] = grid;
   }
   st.posterior = report;
+  st.posterior_lo_coded = p.interval_lo;
+  st.posterior_hi_coded = p.interval_hi;
   store.set_stage(st.stage_prefix + "posterior", report);
   return report;
 }

@@ -253,7 +253,7 @@ void calibrate_stages(StudyEvaluator& ev, PipelineState& st, StudyStore& store, 
     const nlohmann::json moved = keep_pick_in_posterior(s, st, store);
     if (!moved.is_null()) {
       progress.log("curve" + who + ": " + moved["reason"].get<std::string>() + ": " + moved["picked"].dump());
-      run_posterior(ev, st, store);  // its edge flags, for the point now calibrated
+      refresh_edge_flags(s, st, store);
     }
   }
   checkpoint("curve");
