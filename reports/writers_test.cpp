@@ -252,7 +252,7 @@ TEST(Report, OneFactorSurfaceIsAProfile) {
 
 // A curve pick that the posterior put outside its interval: the curve section names the line's own
 // point and why the calibrated point is the posterior's median.
-TEST(Report, CurveSectionSaysWhenThePickMovedToThePosteriorsMedian) {
+TEST(Report, CurveSectionSaysWhenThePickMovedIntoThePosteriorsRegion) {
   StudyData d;
   d.summary.emplace();
   d.summary->curve = nlohmann::json::parse(R"({
@@ -264,7 +264,7 @@ TEST(Report, CurveSectionSaysWhenThePickMovedToThePosteriorsMedian) {
                        "standard_errors": {"intercept": 1.0, "s": 1.5}, "residual_sd": 1.0, "df": 0, "r2": 1.0, "p_slope": 0.7},
     "at_end": "the line meets the experiment beyond the curve's start (s = -6.24): the end is picked",
     "picked_by_line": {"mu_s": 0.9}, "picked": {"mu_s": 0.61},
-    "moved_to_posterior_median": "the line's point lies outside the 95 % interval that the target and the test give together"})");
+    "moved_into_posterior_region": "the line's point, mu_s 0.9 (95 % interval 0.3 .. 0.85), lies outside the 95 % highest-density region that the target and the test give together"})");
   const Document doc = build_report(d);
   const auto it = std::find_if(doc.sections.begin(), doc.sections.end(), [](const Section& s) { return s.id == "curve"; });
   ASSERT_NE(it, doc.sections.end());
@@ -272,7 +272,9 @@ TEST(Report, CurveSectionSaysWhenThePickMovedToThePosteriorsMedian) {
   for (const auto& b : it->blocks)
     if (const auto* p = std::get_if<Paragraph>(&b)) text += p->text + "\n";
   EXPECT_NE(text.find("The line picked s = 0: mu_s = 0.9."), std::string::npos) << text;
-  EXPECT_NE(text.find("But the line's point lies outside the 95 % interval"), std::string::npos) << text;
+  EXPECT_NE(text.find("But the line's point, mu_s 0.9 (95 % interval 0.3 .. 0.85), lies outside the 95 % highest-density region"),
+            std::string::npos)
+      << text;
   EXPECT_NE(text.find(": mu_s = 0.61."), std::string::npos) << text;
 }
 

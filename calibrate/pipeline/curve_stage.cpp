@@ -334,30 +334,37 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
 
 nlohmann::json keep_pick_in_posterior(const StudyConfig& s, PipelineState& st, StudyStore& store) {
   if (!st.curve.is_object() || !st.curve.contains("picked") || !st.curve_verification.is_object() ||
-      !st.posterior.is_object() || !st.posterior.contains("calibrated_interval") || !st.posterior.contains("median"))
+      !st.posterior.is_object() || !st.posterior.contains("calibrated_interval") || !st.posterior.contains("median") ||
+      !st.posterior.contains("mode") || !st.posterior.contains("in_hpd95"))
     return nullptr;
+  const nlohmann::json& in_region = st.posterior["in_hpd95"];
+  if (in_region.value("calibrated", true)) return nullptr;
+  // The median when it lies in the region; else (a posterior bent along a curve, whose marginal
+  // medians can fall off its ridge) the point of highest density.
+  const bool to_median = in_region.value("median", false);
   const nlohmann::json& interval = st.posterior["calibrated_interval"];
-  const nlohmann::json& median = st.posterior["median"];
+  const nlohmann::json& target = st.posterior[to_median ? "median" : "mode"];
   Eigen::VectorXd moved = st.chosen;
-  std::string outside;
+  std::string where;
   for (const int j : st.kept) {
     const std::string& path = s.parameters[static_cast<std::size_t>(j)].path;
-    if (!interval.contains(path) || !median.contains(path)) return nullptr;
+    if (!interval.contains(path) || !target.contains(path)) return nullptr;
     const double lo = interval[path][0].get<double>(), hi = interval[path][1].get<double>(), v = st.chosen(j);
-    const std::string what = path + " " + curve_number(v) + " (95 % interval " + curve_number(lo) + " .. " + curve_number(hi) + ")";
-    if (v < lo || v > hi) outside += (outside.empty() ? "" : ", ") + what;
-    moved(j) = median[path].get<double>();
+    where += (where.empty() ? "" : ", ") + path + " " + curve_number(v) + " (95 % interval " + curve_number(lo) + " .. " +
+             curve_number(hi) + ")";
+    moved(j) = target[path].get<double>();
   }
-  if (outside.empty()) return nullptr;
   const bool on_curve = st.curve_mode == "curve";
   const std::string reason =
-      "the " + std::string(on_curve ? "line's" : "plane's") + " point lies outside the 95 % interval that the target and " +
-      "the test give together: " + outside + "; the data put it among the values they favour least, so the calibrated " +
-      "point is the posterior's median";
+      "the " + std::string(on_curve ? "line's" : "plane's") + " point, " + where + ", lies outside the 95 % " +
+      "highest-density region that the target and the test give together: the data put it among the values they " +
+      "favour least, so the calibrated point is the posterior's " +
+      (to_median ? std::string("median") : std::string("mode (its median lies outside the region too)"));
   st.curve["picked_by_" + std::string(on_curve ? "line" : "plane")] = st.curve["picked"];
   st.chosen = moved;
   st.curve["picked"] = natural_of(s, st, st.chosen);
-  st.curve["moved_to_posterior_median"] = reason;
+  st.curve["moved_into_posterior_region"] = reason;
+  st.posterior["in_hpd95"]["calibrated"] = true;  // the median or mode the region holds
 
   // The test's verification from the curve's runs, read at the new point: the model's mean there,
   // and its standard error without the posterior's widening.
@@ -367,7 +374,7 @@ nlohmann::json keep_pick_in_posterior(const StudyConfig& s, PipelineState& st, S
   nlohmann::json& v = st.curve_verification;
   set_verification_mean(v, mean, mean_se, v["experimental_mean"].get<double>(),
                         v["experimental_sd"].is_number() ? v["experimental_sd"].get<double>() : 0.0);
-  v["source"] = v["source"].get<std::string>() + ", read at the posterior's median";
+  v["source"] = v["source"].get<std::string>() + ", read at the posterior's " + (to_median ? "median" : "mode");
   st.curve["verification"] = v;
   store.set_stage(st.stage_prefix + "curve", st.curve);
   return {{"reason", reason}, {"picked", st.curve["picked"]}};

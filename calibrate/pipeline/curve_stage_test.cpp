@@ -70,9 +70,13 @@ class CurvePick : public ::testing::Test {
     return r;
   }
   // keep_pick_in_posterior after a pick, with the posterior the target and the test gave together
-  // (here set by hand: its 95 % intervals and median).
-  nlohmann::json keep_in(const nlohmann::json& interval, const nlohmann::json& median) {
-    st_.posterior = {{"identified", {{"a", false}, {"b", false}}}, {"calibrated_interval", interval}, {"median", median}};
+  // (here set by hand: its 95 % intervals, median and mode, and whether the pick and the median lie
+  // in its 95 % highest-density region).
+  nlohmann::json keep_in(const nlohmann::json& interval, const nlohmann::json& median, bool pick_in_region,
+                         bool median_in_region = true, nlohmann::json mode = nullptr) {
+    if (mode.is_null()) mode = median;
+    st_.posterior = {{"identified", {{"a", false}, {"b", false}}}, {"calibrated_interval", interval}, {"median", median},
+                     {"mode", mode}, {"in_hpd95", {{"calibrated", pick_in_region}, {"median", median_in_region}}}};
     StudyStore store = StudyStore::create(dir_ + "/study.h5", {"hash", study_.text, "test", "now"});
     const nlohmann::json r = keep_pick_in_posterior(study_, st_, store);
     std::filesystem::remove(dir_ + "/study.h5");
@@ -128,22 +132,25 @@ TEST_F(CurvePick, BeyondTheBoxThePointNearestInResponseIsPicked) {
   EXPECT_NEAR(st_.chosen(1), 1.0, kExact);
 }
 
-TEST_F(CurvePick, APickOutsideThePosteriorsIntervalMovesToItsMedian) {
+TEST_F(CurvePick, APickOutsideThePosteriorsRegionMovesToItsMedian) {
   // The plane meets the experiment beyond the box, so the corner (1, 1) is picked; a posterior
-  // whose 95 % intervals stop short of it moves the point to its median, and the test's
+  // whose 95 % highest-density region leaves it out moves the point to its median, and the test's
   // verification is the plane there (exact: the response is a plane).
   pick([](double a, double b) { return 10.0 + 2.0 * a + b; });
   ASSERT_NEAR(st_.chosen(0), 1.0, kExact);
-  const auto r = keep_in({{"a", {0.02, 0.98}}, {"b", {0.1, 0.9}}}, {{"a", 0.5}, {"b", 0.45}});
+  const auto r = keep_in({{"a", {0.02, 0.98}}, {"b", {0.1, 0.9}}}, {{"a", 0.5}, {"b", 0.45}}, false);
   ASSERT_FALSE(r.is_null());
-  EXPECT_NE(r["reason"].get<std::string>().find("a 1 (95 % interval 0.02 .. 0.98), b 1 (95 % interval 0.1 .. 0.9)"),
+  EXPECT_NE(r["reason"].get<std::string>().find("a 1 (95 % interval 0.02 .. 0.98), b 1 (95 % interval 0.1 .. 0.9), lies "
+                                                "outside the 95 % highest-density region"),
             std::string::npos)
       << r.dump(1);
+  EXPECT_NE(r["reason"].get<std::string>().find("the posterior's median"), std::string::npos) << r.dump(1);
+  EXPECT_TRUE(st_.posterior["in_hpd95"]["calibrated"].get<bool>());
   EXPECT_EQ(st_.chosen(0), 0.5);
   EXPECT_EQ(st_.chosen(1), 0.45);
   EXPECT_EQ(st_.curve["picked"]["a"], 0.5);
   EXPECT_EQ(st_.curve["picked_by_plane"]["a"], 1.0);
-  EXPECT_TRUE(st_.curve.contains("moved_to_posterior_median"));
+  EXPECT_TRUE(st_.curve.contains("moved_into_posterior_region"));
   EXPECT_NEAR(st_.curve_verification["mean"].get<double>(), 10.0 + 2.0 * 0.5 + 0.45, kExact);
   EXPECT_NEAR(st_.curve_verification["rel_error"].get<double>(), 11.45 / 13.3 - 1.0, kExact);
   EXPECT_EQ(st_.curve["verification"], st_.curve_verification);
@@ -173,21 +180,37 @@ TEST_F(CurvePick, EdgeFlagsFollowThePointWhenThePickMoves) {
   std::filesystem::remove(dir_ + "/study.h5");
 }
 
-TEST_F(CurvePick, APickInsideThePosteriorsIntervalStays) {
+TEST_F(CurvePick, APickInsideThePosteriorsRegionStays) {
   st_.curve_path = doe::CurvePath({Eigen::Vector2d(-1.0, -1.0), Eigen::Vector2d(1.0, 1.0)});
   pick([](double a, double b) { return 10.0 + 4.0 * a + b; });
   const double mean = st_.curve_verification["mean"].get<double>();
-  EXPECT_TRUE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.6, 0.7}}}, {{"a", 0.65}, {"b", 0.65}}).is_null());
+  EXPECT_TRUE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.6, 0.7}}}, {{"a", 0.65}, {"b", 0.65}}, true).is_null());
   EXPECT_NEAR(st_.chosen(0), 0.66, kExact);
   EXPECT_NEAR(st_.chosen(1), 0.66, kExact);
-  EXPECT_FALSE(st_.curve.contains("moved_to_posterior_median"));
+  EXPECT_FALSE(st_.curve.contains("moved_into_posterior_region"));
   EXPECT_EQ(st_.curve_verification["mean"].get<double>(), mean);
-  // One parameter outside is enough: both move to the median (the point stays on the posterior's
+  // Outside a parameter's central interval but inside the region (a posterior flat in b, whose
+  // central interval leaves out the ends of its range): the pick stays.
+  EXPECT_TRUE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.2, 0.6}}}, {{"a", 0.65}, {"b", 0.4}}, true).is_null());
+  EXPECT_NEAR(st_.chosen(1), 0.66, kExact);
+  // Outside the region: both parameters move to the median (the point stays on the posterior's
   // ridge, not half on the line's pick).
-  EXPECT_FALSE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.2, 0.6}}}, {{"a", 0.65}, {"b", 0.4}}).is_null());
+  EXPECT_FALSE(keep_in({{"a", {0.6, 0.7}}, {"b", {0.2, 0.6}}}, {{"a", 0.65}, {"b", 0.4}}, false).is_null());
   EXPECT_EQ(st_.chosen(0), 0.65);
   EXPECT_EQ(st_.chosen(1), 0.4);
   EXPECT_TRUE(st_.curve.contains("picked_by_line"));
+}
+
+TEST_F(CurvePick, AMedianOffTheRegionGivesWayToTheMode) {
+  // A posterior bent along a curve: its marginal medians can fall between its arms, off the
+  // region; the point of highest density is taken instead.
+  pick([](double a, double b) { return 10.0 + 2.0 * a + b; });
+  const auto r = keep_in({{"a", {0.1, 0.9}}, {"b", {0.1, 0.9}}}, {{"a", 0.5}, {"b", 0.5}}, false, false, {{"a", 0.2}, {"b", 0.8}});
+  ASSERT_FALSE(r.is_null());
+  EXPECT_NE(r["reason"].get<std::string>().find("the posterior's mode"), std::string::npos) << r.dump(1);
+  EXPECT_EQ(st_.chosen(0), 0.2);
+  EXPECT_EQ(st_.chosen(1), 0.8);
+  EXPECT_NEAR(st_.curve_verification["mean"].get<double>(), 10.0 + 2.0 * 0.2 + 0.8, kExact);
 }
 
 TEST_F(CurvePick, AFlatTestKeepsTheConfirmedPoint) {

@@ -112,9 +112,9 @@ nlohmann::json run_curve_pick(StudyEvaluator& ev, PipelineState& st, StudyStore&
 // one (their answers along the curve are then compared in sd).
 std::vector<int> curve_candidates(const StudyConfig& s);
 // After the posterior has been taken with the curve test: a picked point outside the 95 %
-// interval the target and the test give together (a line extrapolated to the curve's end, a slope
-// that is mostly scatter) is among the values the data favour least, so the calibrated point
-// becomes the posterior's median (inside every central interval by construction), and the
+// highest-density region the target and the test give together (a line extrapolated beyond
+// where the data reach) is among the values the data favour least, so the calibrated point
+// becomes the posterior's median (its mode when the median lies outside the region too), and the
 // test's verification from the curve's runs is read there. Returns the report's entry (null
 // when the pick stays); the curve stage's report keeps the line's or plane's own pick.
 nlohmann::json keep_pick_in_posterior(const StudyConfig& s, PipelineState& st, StudyStore& store);

@@ -260,6 +260,14 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
   report["at_edge"] = chosen_at_edge(s, st, p.interval_lo, p.interval_hi);
   report["mode"] = mode;
   report["median"] = median;
+  // Whether the calibrated point and the marginals' medians lie in the joint 95 % highest-density
+  // region: a point outside it is among the values the data favour least (keep_pick_in_posterior).
+  // Not the marginal intervals: where the posterior is flat in a parameter, its ends lie outside
+  // that parameter's central interval and are favoured as much as its middle.
+  nlohmann::json in_region = {{"median", doe::in_credible_region(evidence, p, p.median)}};
+  if (st.chosen.size() == static_cast<Eigen::Index>(s.parameters.size()))
+    in_region["calibrated"] = doe::in_credible_region(evidence, p, box_coded(st, st.chosen));
+  report["in_hpd95"] = in_region;
   // The credible region for pictures (two leading factors): the density on a 41 x 41 grid over the
   // box, natural units, with the highest-density threshold of the 95 % region.
   if (k == 2) {

@@ -94,10 +94,17 @@ Posterior posterior(const std::vector<TargetEvidence>& targets, const PosteriorO
   for (Eigen::Index i : order) {
     cum += out.weights(i);
     out.hpd_threshold = out.weights(i);
+    out.hpd_log_likelihood = logp(i);
     if (cum >= o.level) break;
   }
   out.points = std::move(pts);
   return out;
+}
+
+bool in_credible_region(const std::vector<TargetEvidence>& targets, const Posterior& p, const Eigen::VectorXd& x) {
+  // Points of equal likelihood are all in or all out: rounding in the sum must not split them.
+  const double b = p.hpd_log_likelihood;
+  return log_likelihood(targets, x) >= b - 1e-12 * (1.0 + std::abs(b));
 }
 
 double pooled_replicate_variance(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, int* df) {

@@ -53,10 +53,19 @@ struct Posterior {
   // Smallest total weight that holds `level` of the mass when the points are taken in decreasing
   // density: the threshold of the highest-density region (for a band around a solution curve).
   double hpd_threshold = 0.0;
+  // The log-likelihood at that region's boundary (the lightest point it holds), for telling
+  // whether a point off the evaluated ones lies in the region (in_credible_region).
+  double hpd_log_likelihood = 0.0;
 };
 
 // Throws DoeError on an empty box, a box with lower >= upper, no targets, or a level outside (0, 1).
 Posterior posterior(const std::vector<TargetEvidence>& targets, const PosteriorOptions& options);
+
+// Whether x (inside the posterior's box) lies in its highest-density region at the level it was
+// taken at: the targets' likelihood at x at least that at the region's boundary. Unlike the
+// marginal intervals, this is a statement about the point as a whole: where the posterior is flat
+// every point of the box is in the region, however far into a marginal's tails it lies.
+bool in_credible_region(const std::vector<TargetEvidence>& targets, const Posterior& p, const Eigen::VectorXd& x);
 
 // Run-to-run noise variance pooled over the groups of identical inputs with two or more runs:
 // sum_g (n_g - 1) s_g^2 / sum_g (n_g - 1) (the replicates' pure-error mean square; Montgomery, DAE

@@ -51,6 +51,42 @@ TEST(Posterior, FlatResponseLeavesTheWholeBox) {
   EXPECT_NEAR(p.interval_hi(0), 0.3 + 0.975 * 0.6, 0.6 / 201);
 }
 
+TEST(Posterior, TheCredibleRegionOfAPeakIsItsHighestDensityInterval) {
+  // The likelihood of LinearResponseGivesTheAnalyticInterval: N(0.5, 0.1^2) on [-1, 1], whose
+  // highest-density 95 % region is 0.5 +- 1.95996 x 0.1.
+  TargetEvidence t;
+  t.response = [](const Eigen::VectorXd& x) { return GpPrediction{10.0 * x(0), 0.0}; };
+  t.value = 5.0;
+  t.value_variance = 1.0;
+  PosteriorOptions o;
+  o.lower = Eigen::VectorXd::Constant(1, -1.0);
+  o.upper = Eigen::VectorXd::Constant(1, 1.0);
+  o.grid_points = 20001;
+  const Posterior p = posterior({t}, o);
+  const auto in = [&](double x) { return in_credible_region({t}, p, Eigen::VectorXd::Constant(1, x)); };
+  EXPECT_TRUE(in(0.5));
+  EXPECT_TRUE(in(0.5 + 0.19));
+  EXPECT_TRUE(in(0.5 - 0.19));
+  EXPECT_FALSE(in(0.5 + 0.20));
+  EXPECT_FALSE(in(0.5 - 0.20));
+  EXPECT_FALSE(in(-1.0));
+}
+
+TEST(Posterior, EveryPointOfAFlatPosteriorIsInItsCredibleRegion) {
+  // The uniform prior of FlatResponseLeavesTheWholeBox: the box's ends lie outside the marginal's
+  // central 95 % interval, yet the data favour them as much as the middle.
+  TargetEvidence t;
+  t.response = [](const Eigen::VectorXd&) { return GpPrediction{100.0, 4.0}; };
+  t.value = 101.0;
+  PosteriorOptions o;
+  o.lower = Eigen::VectorXd::Constant(1, 0.3);
+  o.upper = Eigen::VectorXd::Constant(1, 0.9);
+  const Posterior p = posterior({t}, o);
+  ASSERT_GT(p.interval_hi(0), 0.88);
+  ASSERT_LT(p.interval_hi(0), 0.9);
+  for (double x : {0.3, 0.6, 0.897, 0.9}) EXPECT_TRUE(in_credible_region({t}, p, Eigen::VectorXd::Constant(1, x))) << x;
+}
+
 TEST(Posterior, PooledReplicateVariance) {
   Eigen::MatrixXd X(6, 2);
   X << 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2;

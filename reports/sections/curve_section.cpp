@@ -53,14 +53,14 @@ void add_curve_section(const StudyData& d, Document& doc) {
   s.table(std::move(t));
   std::string picked;
   for (const auto& [name, v] : member(c, "picked").items()) picked += (picked.empty() ? "" : ", ") + name + " = " + format_value(v);
-  if (c.contains("moved_to_posterior_median")) {
+  if (c.contains("moved_into_posterior_region")) {
     std::string by;
     for (const char* key : {"picked_by_line", "picked_by_plane"})
       for (const auto& [name, v] : member(c, key).items()) by += (by.empty() ? "" : ", ") + name + " = " + format_value(v);
     s.paragraph(std::string(c.contains("s_picked") ? "The line picked s = " + format_value(c["s_picked"]) : std::string("The plane picked")) +
                 ": " + by + "." + (c.contains("at_end") ? " " + format_value(c["at_end"]) + "." : "") +
                 (c.contains("note") ? " " + format_value(c["note"]) + "." : "") + " But " +
-                format_value(c["moved_to_posterior_median"]) + ": " + picked + ".");
+                format_value(c["moved_into_posterior_region"]) + ": " + picked + ".");
   } else if (c.contains("note")) {
     s.paragraph(format_value(c["note"]) + ": " + picked + ".");
   } else {
