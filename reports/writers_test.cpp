@@ -144,6 +144,8 @@ StudyData fixture(const fs::path& dir) {
     "cpu_seconds": 600.5, "wall_seconds": 320.0, "tolerance": 0.02,
     "warnings": ["test shear, model manual-9: direct_shear.quick.diameter_m is small for the seed"],
     "calibrated": {"seed_seed.static_friction": 0.5}, "held_at_nominal": {"seed_seed.restitution": 0.45},
+    "calibrated_interval": {"seed_seed.static_friction": [0.31, 0.88]}, "identified": {"seed_seed.static_friction": false},
+    "posterior": {"reasons": {"seed_seed.static_friction": "95 % interval 0.31 .. 0.88"}, "in_hpd95": {"calibrated": true, "median": true}},
     "confirmed": {"shear_strength_pa": {"mean": 118000.0, "sd": 900.0, "n": 3, "rel_error": -0.002, "rel_error_ci": [-0.01, 0.006],
                   "target": 118230.0, "within_tolerance": true, "resolved": true}},
     "verification": {"model": "manual-9", "tests": [
@@ -202,6 +204,7 @@ TEST(Report, RendersVerificationModelSelectionAndScenesFromAFixture) {
                       "skipped (model cannot be chosen)."),
             std::string::npos);
   EXPECT_NE(html.find("Needs a newer study store"), std::string::npos);
+  EXPECT_NE(md.find("The calibrated point lies inside the posterior's joint 95 % highest-density region."), std::string::npos) << md;
   // The rigs' warnings stand on the first screen, in both formats.
   const std::string warned = "test shear, model manual-9: direct_shear.quick.diameter_m is small for the seed";
   EXPECT_LT(html.find(warned), html.find("<h2>Study inputs</h2>"));

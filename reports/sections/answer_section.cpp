@@ -33,6 +33,13 @@ void add_answer_section(const StudyData& d, Document& doc) {
                           format_value(t.value("uncertainty", nlohmann::json())) + "; run-to-run sd " +
                           format_value(t.value("run_noise_sd", nlohmann::json())) + " from " +
                           format_value(t.value("run_noise_source", nlohmann::json())) + ".");
+    // The point as a whole: inside the joint 95 % highest-density region or not (a point can lie
+    // inside every parameter's interval and still off a posterior bent along a curve, or outside a
+    // flat parameter's central interval and still where the data favour it most).
+    const auto& in_region = member(posterior, "in_hpd95");
+    if (in_region.contains("calibrated"))
+      cal.notes.push_back(std::string("The calibrated point lies ") + (in_region["calibrated"].get<bool>() ? "inside" : "outside") +
+                          " the posterior's joint 95 % highest-density region.");
     s.table(std::move(cal));
     const auto& curve = j.curve;
     if (!curve.empty() && !curve.contains("skipped")) {
