@@ -10,6 +10,11 @@ namespace seedcal {
 
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhasePour = "pour";
+constexpr const char* kPhaseSettle = "settle";
+
 // Batches of the pour, each given this long to fall and make room for the next.
 constexpr int kPourBatches = 20;
 constexpr double kPourBatchInterval_s = 0.15;
@@ -29,9 +34,9 @@ RunPlan plan_bulk_density(const BulkDensitySpec& spec) {
   p.seeds = seeds_in_mass(spec.seeds, pour_kg);
   p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
   const double region_m3 = c.x() * c.y() * (0.7 * c.z() + collar);
-  p.phases.push_back({"pour", pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+  p.phases.push_back({kPhasePour, pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
                       0.5 * p.spheres, true});
-  p.phases.push_back({"settle", settle_time_s(c.z() + collar, g, spec.max_time_s), p.spheres, true});
+  p.phases.push_back({kPhaseSettle, settle_time_s(c.z() + collar, g, spec.max_time_s), p.spheres, true});
   return p;
 }
 
@@ -65,7 +70,7 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
   fs.region.lo_m = Vec3(0.0, 0.0, 0.3 * c.z());
   fs.region.hi_m = Vec3(c.x(), c.y(), c.z() + collar);
   double poured = 0.0;
-  begin_phase(res.run, sim, "pour");
+  begin_phase(res.run, sim, kPhasePour);
   for (int batch = 0; batch < kPourBatches && poured < fs.total_mass_kg; ++batch) {
     FactorySpec b = fs;
     b.total_mass_kg = fs.total_mass_kg - poured;
@@ -78,7 +83,7 @@ BulkDensityResult run_bulk_density(const BulkDensitySpec& spec) {
     fs.region.lo_m.z() = std::min(highest_point_m(sim), c.z() + collar - 0.02);
   }
   res.seeds_poured = sim.bodies().size();
-  begin_phase(res.run, sim, "settle");
+  begin_phase(res.run, sim, kPhaseSettle);
   SettleResult st;
   if (sim.failure().status == RunStatus::ok) {
     SettleCriteria sc;

@@ -10,6 +10,12 @@
 namespace seedcal {
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhaseFill = "fill";
+constexpr const char* kPhaseSettle = "settle";
+constexpr const char* kPhaseRun = "run";
+
 // The settling criterion is checked this often (as the bulk-density scene checks it).
 constexpr double kSettleCheck_s = 0.005;
 
@@ -119,13 +125,13 @@ RunPlan plan_custom(const CustomSpec& spec) {
   p.physics = spec.physics;
   p.seeds = spec.fill.count > 0 ? static_cast<double>(spec.fill.count) : seeds_in_mass(spec.seeds, mass);
   p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
-  p.phases.push_back({"fill",
+  p.phases.push_back({kPhaseFill,
                       pour_time_s(mass, rho, region_volume_m3(spec.fill.region), spec.fill.batches,
                                   spec.fill.batch_interval_s),
                       0.5 * p.spheres, true});
-  p.phases.push_back({"settle", settle_time_s(h, g, spec.settle_max_time_s), p.spheres, true});
+  p.phases.push_back({kPhaseSettle, settle_time_s(h, g, spec.settle_max_time_s), p.spheres, true});
   // Exact in time; the spheres are an upper bound when a sink takes the discharged seeds out.
-  p.phases.push_back({"run", spec.run_time_s, p.spheres, false});
+  p.phases.push_back({kPhaseRun, spec.run_time_s, p.spheres, false});
   return p;
 }
 
@@ -143,9 +149,9 @@ CustomResult run_custom(const CustomSpec& spec) {
                  seed_options(spec.physics, dt, spec.threads, spec.seed, spec.observer));
   for (const CustomWall& w : spec.walls) sim.add_wall(w.wall);
 
-  begin_phase(res.run, sim, "fill");
+  begin_phase(res.run, sim, kPhaseFill);
   pour(sim, spec, res);
-  begin_phase(res.run, sim, "settle");
+  begin_phase(res.run, sim, kPhaseSettle);
   SettleResult st;
   if (sim.failure().status == RunStatus::ok) {
     SettleCriteria sc;
@@ -157,7 +163,7 @@ CustomResult run_custom(const CustomSpec& spec) {
   res.settle_reason = st.reason;
 
   // The run phase: motions start at their times, samples every sample_interval_s.
-  begin_phase(res.run, sim, "run");
+  begin_phase(res.run, sim, kPhaseRun);
   res.series.resize(spec.measures.size());
   std::vector<PlaneCrossing> planes;
   for (const CustomMeasure& m : spec.measures)

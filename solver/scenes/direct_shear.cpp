@@ -20,6 +20,13 @@ const char* to_string(ShearBoxGeometry g) { return g == ShearBoxGeometry::zj ? "
 
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhasePour = "pour";
+constexpr const char* kPhaseSettle = "settle";
+constexpr const char* kPhaseConsolidate = "consolidate";
+constexpr const char* kPhaseShear = "shear";
+
 // Seeds poured for the specimen: enough to fill it at a solid fraction of 0.62, more than any loose
 // random packing of convex grains reaches, in ten batches 0.1 s apart.
 constexpr double kPourSolidFraction = 0.62;
@@ -86,12 +93,12 @@ double form_specimen(Simulation& sim, const DirectShearSpec& spec, RunReport& re
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.5 * H);
   fs.region.height_m = 0.5 * H + spec.pour_height_factor * H;
-  begin_phase(report, sim, "pour");
+  begin_phase(report, sim, kPhasePour);
   pour_seeds(sim, fs, area * H * rho * kPourSolidFraction, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
   sc.max_time_s = kSettleMaxTime_s;
   sc.check_interval_s = 0.005;
-  begin_phase(report, sim, "settle");
+  begin_phase(report, sim, kPhaseSettle);
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   double mass = 0.0;
   if (spec.sample_density_kg_m3 > 0.0) {
@@ -210,13 +217,13 @@ RunPlan plan_direct_shear(const DirectShearSpec& spec) {
   const double specimen_kg = spec.sample_density_kg_m3 > 0.0 ? spec.sample_density_kg_m3 * area * H : 0.55 * rho * area * H;
   const double specimen = std::min(p.seeds, seeds_in_mass(spec.seeds, specimen_kg)) * per_seed;
   const double region_m3 = area * (0.5 * H + guide);
-  p.phases.push_back({"pour", pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+  p.phases.push_back({kPhasePour, pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
                       0.5 * p.spheres, true});
-  p.phases.push_back({"settle", settle_time_s(H + guide, g, kSettleMaxTime_s), p.spheres, true});
+  p.phases.push_back({kPhaseSettle, settle_time_s(H + guide, g, kSettleMaxTime_s), p.spheres, true});
   // The cap closes its start clearance and the bed's response to the stress dies out.
-  p.phases.push_back({"consolidate", settle_time_s(0.0, g, spec.consolidation_max_time_s), specimen, true,
+  p.phases.push_back({kPhaseConsolidate, settle_time_s(0.0, g, spec.consolidation_max_time_s), specimen, true,
                       spec.normal_stress_pa});
-  p.phases.push_back({"shear", spec.shear_displacement_m / spec.shear_speed_m_s, specimen, false, spec.normal_stress_pa});
+  p.phases.push_back({kPhaseShear, spec.shear_displacement_m / spec.shear_speed_m_s, specimen, false, spec.normal_stress_pa});
   return p;
 }
 
@@ -240,9 +247,9 @@ DirectShearResult run_direct_shear(const DirectShearSpec& spec) {
   res.sample_mass_kg = form_specimen(sim, spec, res.run);
   res.seeds = sim.bodies().size();
   add_cap(sim, spec, rig);
-  begin_phase(res.run, sim, "consolidate");
+  begin_phase(res.run, sim, kPhaseConsolidate);
   consolidate(sim, spec, rig);
-  begin_phase(res.run, sim, "shear");
+  begin_phase(res.run, sim, kPhaseShear);
 
   // Shear: the upper ring and the cap move along +x.
   const Vec3 v(spec.shear_speed_m_s, 0.0, 0.0);

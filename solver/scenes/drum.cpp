@@ -63,6 +63,12 @@ double wall_layer_speed_ratio(const BodyState& bodies, double radius_m, double l
 
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhasePour = "pour";
+constexpr const char* kPhaseSettle = "settle";
+constexpr const char* kPhaseTurn = "turn";
+
 // The fill is poured in up to 10 batches 0.15 s apart and settles for at most 1 s before the turn.
 constexpr int kPourBatches = 10;
 constexpr double kPourBatchInterval_s = 0.15;
@@ -83,12 +89,12 @@ RunPlan plan_drum(const DrumSpec& spec) {
   p.seeds = seeds_in_mass(spec.seeds, mass);
   p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
   const double region_m3 = 1.5 * R * D * 1.35 * R;
-  p.phases.push_back({"pour", pour_time_s(mass, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+  p.phases.push_back({kPhasePour, pour_time_s(mass, rho, region_m3, kPourBatches, kPourBatchInterval_s),
                       0.5 * p.spheres, true});
-  p.phases.push_back({"settle", settle_time_s(1.35 * R, g, kFillSettleMaxTime_s), p.spheres, true});
+  p.phases.push_back({kPhaseSettle, settle_time_s(1.35 * R, g, kFillSettleMaxTime_s), p.spheres, true});
   double last = 0.0;
   for (double t : spec.frame_times_s) last = std::max(last, t);
-  p.phases.push_back({"turn", last, p.spheres, false});
+  p.phases.push_back({kPhaseTurn, last, p.spheres, false});
   return p;
 }
 
@@ -146,16 +152,16 @@ DrumResult run_drum(const DrumSpec& spec) {
   fs.scale = spec.seeds.scale;
   fs.region.lo_m = Vec3(-0.75 * R, -0.5 * D, -0.75 * R);
   fs.region.hi_m = Vec3(0.75 * R, 0.5 * D, 0.6 * R);
-  begin_phase(res.run, sim, "pour");
+  begin_phase(res.run, sim, kPhasePour);
   pour_seeds(sim, fs, mass, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
   sc.max_time_s = kFillSettleMaxTime_s;
   sc.check_interval_s = 0.005;
-  begin_phase(res.run, sim, "settle");
+  begin_phase(res.run, sim, kPhaseSettle);
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();
 
-  begin_phase(res.run, sim, "turn");
+  begin_phase(res.run, sim, kPhaseTurn);
   const double t0 = sim.time_s();
   // Rotation laws take the absolute time; shift so the turn starts now.
   struct Delayed final : WallMotion {

@@ -11,6 +11,10 @@
 namespace seedcal {
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhaseDrop = "drop";
+
 // The step for the body `b` (placed) dropped from the spec's height: the stable limit at the
 // impact speed sqrt(2 g h) (scene_common.hpp).
 double drop_time_step(const FreeDropSpec& spec, const BodyDef& b, SimulationOptions opt) {
@@ -37,7 +41,7 @@ RunPlan plan_free_drop(const FreeDropSpec& spec) {
   p.spheres = static_cast<double>(spec.body.spheres.size());
   // The fall, the impact and the rise to the rebound apex: at most twice the fall time.
   const double fall = std::sqrt(2.0 * spec.drop_height_m / spec.physics.gravity_m_s2.norm());
-  p.phases.push_back({"drop", std::min(spec.max_time_s, 2.0 * fall), p.spheres, true});
+  p.phases.push_back({kPhaseDrop, std::min(spec.max_time_s, 2.0 * fall), p.spheres, true});
   return p;
 }
 
@@ -91,7 +95,7 @@ FreeDropResult run_free_drop(const FreeDropSpec& spec) {
   // a hundred contact times of a seed on steel.
   constexpr double kRestEnergyRatio = 1e-6, kRestTime_s = 0.01;
   double rest_since_s = -1.0;
-  begin_phase(res.run, run, "drop");
+  begin_phase(res.run, run, kPhaseDrop);
   for (std::uint64_t s = 0; s < max_steps; ++s) {
     vz_before_touch = run.bodies().velocity_m_s[0].z();
     if (!run.step()) {

@@ -9,6 +9,10 @@
 namespace seedcal {
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhaseImpact = "impact";
+
 // The stable limit for the scene's bodies at the expected impact speed: the largest relative speed
 // between two bodies or a body and a wall, plus what gravity adds over the run.
 double impact_time_step(const ImpactSpec& spec, SimulationOptions opt) {
@@ -37,7 +41,7 @@ RunPlan plan_impact(const ImpactSpec& spec) {
   for (const BodyDef& b : spec.bodies) p.spheres += static_cast<double>(b.spheres.size());
   if (!spec.bodies.empty()) p.body = spec.bodies.front();
   p.physics = spec.physics;
-  p.phases.push_back({"impact", spec.duration_s, p.spheres, false});
+  p.phases.push_back({kPhaseImpact, spec.duration_s, p.spheres, false});
   return p;
 }
 
@@ -69,7 +73,7 @@ ImpactResult run_impact(const ImpactSpec& spec, const StepObserver& observer) {
   const auto steps = static_cast<std::uint64_t>(std::llround(spec.duration_s / opt.dt_s));
   bool in_first_impact = false, first_impact_done = false;
   res.run.stop_reason = "duration reached";
-  begin_phase(res.run, sim, "impact");
+  begin_phase(res.run, sim, kPhaseImpact);
   for (std::uint64_t s = 0; s < steps; ++s) {
     if (!sim.step()) {
       res.run.failure = sim.failure();

@@ -13,6 +13,13 @@
 namespace seedcal {
 namespace {
 
+// The protocol's phases, named once for its plan and its run (metrics.json `phases` beside
+// `plan.phases`).
+constexpr const char* kPhasePour = "pour";
+constexpr const char* kPhaseSettle = "settle";
+constexpr const char* kPhaseLift = "lift";
+constexpr const char* kPhaseHeap = "heap";
+
 // The fill is poured in up to 20 batches 0.15 s apart and settles in the tube for at most 1.5 s.
 constexpr int kPourBatches = 20;
 constexpr double kPourBatchInterval_s = 0.15;
@@ -102,9 +109,9 @@ RunPlan plan_piling(const PilingSpec& spec) {
   p.seeds = seeds_in_mass(spec.seeds, pour_kg);
   p.spheres = p.seeds * static_cast<double>(spec.seeds.body.spheres.size());
   const double region_m3 = std::numbers::pi * R * R * (tube_h - 0.3 * spec.fill_height_m);
-  p.phases.push_back({"pour", pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
+  p.phases.push_back({kPhasePour, pour_time_s(pour_kg, rho, region_m3, kPourBatches, kPourBatchInterval_s),
                       0.5 * p.spheres, true});
-  p.phases.push_back({"settle", settle_time_s(tube_h, g, kFillSettleMaxTime_s), p.spheres, true});
+  p.phases.push_back({kPhaseSettle, settle_time_s(tube_h, g, kFillSettleMaxTime_s), p.spheres, true});
   // The lift stops once the rim clears the heap's top by a seed size. The fill (volume V) runs out
   // into a cone of slope theta, whose height is (3 V tan^2 theta / pi)^(1/3); theta is taken as
   // 30 deg, about the static angle of repose of grain seeds (31.2 to 31.8 deg for the paper's three
@@ -115,9 +122,9 @@ RunPlan plan_piling(const PilingSpec& spec) {
   const double tan2 = std::pow(std::tan(kPlanAngleOfRepose_rad), 2);
   const double cone_m = std::cbrt(3.0 * fill_m3 * tan2 / std::numbers::pi);
   const double lift_m = std::min(cone_m + seed_size * spec.seeds.scale.mean, spec.fill_height_m + kLiftBeyondTop_m);
-  p.phases.push_back({"lift", lift_m / spec.lift_speed_m_s, p.spheres, true});
+  p.phases.push_back({kPhaseLift, lift_m / spec.lift_speed_m_s, p.spheres, true});
   // The heap runs out and comes to rest: the fall of the fill's top and the bed's collisions.
-  p.phases.push_back({"heap", std::max(kHeapMinTime_s, settle_time_s(spec.fill_height_m, g, spec.max_time_s)),
+  p.phases.push_back({kPhaseHeap, std::max(kHeapMinTime_s, settle_time_s(spec.fill_height_m, g, spec.max_time_s)),
                       p.spheres, true});
   return p;
 }
@@ -155,12 +162,12 @@ PilingResult run_piling(const PilingSpec& spec) {
   fs.region.radius_m = R;
   fs.region.base_m = Vec3(0.0, 0.0, 0.3 * spec.fill_height_m);
   fs.region.height_m = tube_h - 0.3 * spec.fill_height_m;
-  begin_phase(res.run, sim, "pour");
+  begin_phase(res.run, sim, kPhasePour);
   pour_seeds(sim, fs, pour_kg, kPourBatches, kPourBatchInterval_s);
   SettleCriteria sc;
   sc.max_time_s = kFillSettleMaxTime_s;
   sc.check_interval_s = 0.005;
-  begin_phase(res.run, sim, "settle");
+  begin_phase(res.run, sim, kPhaseSettle);
   if (sim.failure().status == RunStatus::ok) run_until_settled(sim, sc);
   res.seeds = sim.bodies().size();
   const double top = highest_point_m(sim);
@@ -173,7 +180,7 @@ PilingResult run_piling(const PilingSpec& spec) {
     seed_size = std::max(seed_size, 2.0 * (s.offset_m.norm() + s.radius_m));
   seed_size *= spec.seeds.scale.mean;
   const double lift = top + kLiftBeyondTop_m;
-  begin_phase(res.run, sim, "lift");
+  begin_phase(res.run, sim, kPhaseLift);
   const double t0 = sim.time_s();
   sim.walls()[tube_index].motion = std::make_shared<Schedule>(
       std::vector<Schedule::Segment>{{t0, t0 + lift / spec.lift_speed_m_s, Vec3(0, 0, spec.lift_speed_m_s)}});
@@ -185,7 +192,7 @@ PilingResult run_piling(const PilingSpec& spec) {
   sim.walls()[tube_index].motion = nullptr;
   sim.walls()[tube_index].pose.velocity_m_s.setZero();
   SettleResult heap;
-  begin_phase(res.run, sim, "heap");
+  begin_phase(res.run, sim, kPhaseHeap);
   if (sim.failure().status == RunStatus::ok) {
     sc.max_time_s = spec.max_time_s;
     sc.min_time_s = kHeapMinTime_s;

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -37,6 +38,15 @@ nlohmann::json run_mini(const std::string& scene, const std::string& sets, const
   auto j = nlohmann::json::parse(read_text(out + "/metrics.json"));
   EXPECT_EQ(j["status"], "ok") << j.dump(1);
   EXPECT_GT(j["steps"].get<double>(), 0.0);
+  // The phases as they ran carry the plan's names in the plan's order (the plan's estimate and the
+  // run's record are compared phase by phase, docs/results/cost_estimate.md).
+  std::vector<std::string> ran, planned;
+  for (const auto& p : j.value("phases", nlohmann::json::array())) ran.push_back(p.value("name", std::string()));
+  for (const auto& p : j.value("plan", nlohmann::json::object()).value("phases", nlohmann::json::array()))
+    planned.push_back(p.value("name", std::string()));
+  EXPECT_FALSE(ran.empty()) << j.dump(1);
+  EXPECT_EQ(ran, std::vector<std::string>(planned.begin(), planned.begin() + static_cast<std::ptrdiff_t>(std::min(ran.size(), planned.size()))))
+      << "ran " << ::testing::PrintToString(ran) << ", planned " << ::testing::PrintToString(planned);
   std::filesystem::remove_all(out);
   return j;
 }
