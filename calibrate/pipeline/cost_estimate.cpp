@@ -106,9 +106,15 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   // Calibration: runs of every target (under the first model) at each planned point.
   double per_point = 0.0;
   for (int t = 0; t < T; ++t) per_point += cost[0][static_cast<std::size_t>(t)];
+  // One calibration point: a run of every target.
+  const auto point_runs = [&](int points, std::vector<double>& batch) {
+    for (int p = 0; p < points; ++p)
+      for (int t = 0; t < T; ++t) batch.push_back(cost[0][static_cast<std::size_t>(t)]);
+  };
   auto add = [&](const std::string& stage, int points_expected, int points_most, int replicates) {
-    StageRuns r{stage, points_expected * replicates * T, points_most * replicates * T, 0.0};
+    StageRuns r{stage, points_expected * replicates * T, points_most * replicates * T, 0.0, {}};
     r.cpu_s = points_expected * replicates * per_point;
+    if (points_expected > 0) point_runs(points_expected * replicates, r.batches.emplace_back());
     e.stages.push_back(r);
   };
   int calibrated = 0;
@@ -121,8 +127,11 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   int before = 0;
   for (const StageRuns& r : e.stages) before += r.runs;
   const int confirm_runs = std::max(0, std::min(kConfirmRounds * s.confirm.replicates * T, s.confirm.max_evaluations - before));
-  StageRuns confirm{"confirmation", confirm_runs, std::max(0, s.confirm.max_evaluations - before), 0.0};
+  StageRuns confirm{"confirmation", confirm_runs, std::max(0, s.confirm.max_evaluations - before), 0.0, {}};
   confirm.cpu_s = T > 0 ? static_cast<double>(confirm_runs) / T * per_point : 0.0;
+  // Round by round: each round's replicates of every target.
+  for (int left = T > 0 ? confirm_runs / T : 0; left > 0; left -= std::max(1, s.confirm.replicates))
+    point_runs(std::min(left, std::max(1, s.confirm.replicates)), confirm.batches.emplace_back());
   e.stages.push_back(confirm);
   // The pick along the solution curve (curve_stage.cpp), expected when one target has two
   // parameters to calibrate: the named test at every point, or every candidate at the curve's
@@ -131,7 +140,7 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   const std::vector<int> candidates = curve_candidates(s);
   int curve_scene = -1;
   if (T == 1 && calibrated == 2 && s.verify.curve_points > 0 && !candidates.empty()) {
-    StageRuns curve{"curve", 0, 0, 0.0};
+    StageRuns curve{"curve", 0, 0, 0.0, {}};
     const int n = s.verify.curve_points;
     curve_scene = candidates.front();
     for (const int c : candidates)
@@ -148,6 +157,7 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
       curve.cpu_s = n * cost[0][static_cast<std::size_t>(curve_scene)];
     }
     curve.at_most = curve.runs;
+    curve.batches.push_back(std::vector<double>(static_cast<std::size_t>(curve.runs), curve.runs > 0 ? curve.cpu_s / curve.runs : 0.0));
     e.stages.push_back(curve);
   }
   // [verify] calibrate_each_model: every other model repeats the calibration and the curve under
@@ -168,14 +178,26 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
     for (std::size_t m = 1; m < s.models.size(); ++m) {
       double per_point_m = 0.0;
       for (int t = 0; t < T; ++t) per_point_m += cost[m][static_cast<std::size_t>(t)];
-      StageRuns r{"calibration of \"" + s.models[m].name + "\"", runs + curve_runs, most + curve_runs, points * per_point_m};
+      StageRuns r{"calibration of \"" + s.models[m].name + "\"", runs + curve_runs, most + curve_runs, points * per_point_m, {}};
       if (curve_scene >= 0) r.cpu_s += curve_runs * cost[m][static_cast<std::size_t>(curve_scene)];
+      // The first model's batches, each run priced under this model.
+      const std::size_t first_model_stages = e.stages.size() - (m - 1);
+      for (std::size_t k = 0; k < first_model_stages; ++k) {
+        const bool curve_stage = e.stages[k].stage == "curve";
+        const double ratio = curve_stage ? cost[m][static_cast<std::size_t>(curve_scene)] / std::max(cost[0][static_cast<std::size_t>(curve_scene)], 1e-300)
+                                         : per_point_m / std::max(per_point, 1e-300);
+        for (const std::vector<double>& b : e.stages[k].batches) {
+          std::vector<double>& priced = r.batches.emplace_back();
+          for (const double c : b) priced.push_back(c * ratio);
+        }
+      }
       e.stages.push_back(r);
     }
   }
   // Verification: every scene under every model, its replicates each.
   if (!s.checks.empty() || s.models.size() > 1) {
-    StageRuns verify{"verification", 0, 0, 0.0};
+    // One batch in model order, each model's tests in order (verify_stage.cpp).
+    StageRuns verify{"verification", 0, 0, 0.0, {{}}};
     for (std::size_t m = 0; m < s.models.size(); ++m)
       for (int t = 0; t < s.scene_count(); ++t) {
         const StudyTarget& test = s.scene_of(t);
@@ -184,6 +206,7 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
         if ((m == 0 || each_model) && t == curve_scene) continue;
         verify.runs += reps;
         verify.cpu_s += reps * cost[m][static_cast<std::size_t>(t)];
+        verify.batches.front().insert(verify.batches.front().end(), static_cast<std::size_t>(reps), cost[m][static_cast<std::size_t>(t)]);
       }
     e.stages.push_back(verify);
   }
@@ -212,6 +235,19 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   return e;
 }
 
+double stages_wall_s(const std::vector<StageRuns>& stages, int slots) {
+  const auto n = static_cast<std::size_t>(std::max(1, slots));
+  double wall = 0.0;
+  std::vector<double> free_at(n);
+  for (const StageRuns& r : stages)
+    for (const std::vector<double>& batch : r.batches) {
+      std::fill(free_at.begin(), free_at.end(), 0.0);
+      for (const double c : batch) *std::min_element(free_at.begin(), free_at.end()) += c;
+      wall += *std::max_element(free_at.begin(), free_at.end());
+    }
+  return wall;
+}
+
 std::vector<std::string> describe_cost(const StudyCostEstimate& e, int slots) {
   std::vector<std::string> out;
   for (const SceneCost& c : e.scenes)
@@ -224,7 +260,7 @@ std::vector<std::string> describe_cost(const StudyCostEstimate& e, int slots) {
   const int n = std::max(1, slots);
   out.push_back("plan: in all ~" + std::to_string(e.runs) + " DEM runs (at most " + std::to_string(e.runs_at_most) +
                 "), ~" + fmt("%.0f", e.cpu_s) + " CPU s (at most " + fmt("%.0f", e.cpu_s_at_most) + "), ~" +
-                clock_text(e.cpu_s / n) + " on " + std::to_string(n) + " slot" + (n > 1 ? "s" : "") +
+                clock_text(stages_wall_s(e.stages, n)) + " on " + std::to_string(n) + " slot" + (n > 1 ? "s" : "") +
                 "; measuring this machine took " + fmt("%.2g", e.probe_cpu_s) + " CPU s");
   return out;
 }

@@ -57,7 +57,16 @@ struct StageRuns {
   int runs = 0;      // expected
   int at_most = 0;   // the most it can take
   double cpu_s = 0.0;
+  // The expected runs' CPU seconds, batch by batch as the stage hands them to the slots (a batch
+  // ends before the next begins: a confirmation round, the curve's points, the verification).
+  std::vector<std::vector<double>> batches;
 };
+
+// Wall seconds of the stages on `slots` simulations at once: each batch's runs in plan order,
+// each to the slot that frees first (list scheduling), batch after batch. A lone long run at a
+// batch's end keeps the other slots idle, which CPU seconds over slots would not show; runs side
+// by side that slow each other (a shared memory bus) are not priced.
+double stages_wall_s(const std::vector<StageRuns>& stages, int slots);
 
 struct StudyCostEstimate {
   std::vector<SceneCost> scenes;  // each target and verification test under each model

@@ -81,6 +81,21 @@ TEST(CostEstimate, QuickStudyRunsFollowItsPlan) {
   EXPECT_NEAR(e.cpu_s, cpu, 1e-9 * cpu);
   EXPECT_LE(e.runs, e.runs_at_most);
   EXPECT_LE(e.cpu_s, e.cpu_s_at_most * (1.0 + 1e-12));
+  // Each stage's batches hold its expected runs and their CPU seconds; on two slots the wall time
+  // lies between half the CPU time (every slot busy throughout) and all of it.
+  for (const StageRuns& r : e.stages) {
+    std::size_t runs = 0;
+    double batch_cpu = 0.0;
+    for (const auto& b : r.batches) {
+      runs += b.size();
+      for (const double c : b) batch_cpu += c;
+    }
+    EXPECT_EQ(runs, static_cast<std::size_t>(r.runs)) << r.stage;
+    EXPECT_NEAR(batch_cpu, r.cpu_s, 1e-9 * (1.0 + r.cpu_s)) << r.stage;
+  }
+  const double wall = stages_wall_s(e.stages, 2);
+  EXPECT_GE(wall, 0.5 * e.cpu_s * (1.0 - 1e-12));
+  EXPECT_LE(wall, e.cpu_s * (1.0 + 1e-12));
   const auto lines = describe_cost(e, 2);
   ASSERT_FALSE(lines.empty());
   EXPECT_NE(lines.back().find("plan: in all ~" + std::to_string(e.runs) + " DEM runs"), std::string::npos)
@@ -111,6 +126,21 @@ TEST(CostProbe, LoadedBedHoldsItsStress) {
   EXPECT_GT(loaded.cpu_s_per_sphere_step, 0.0);
   const CostProbe rest = probe_sphere_step_cost(plan.physics, plan.body, plan.dt_s, 1, true);
   EXPECT_EQ(rest.measured_stress_pa, 0.0);
+}
+
+// List scheduling batch by batch: a batch ends when its last run does, and the next starts then.
+TEST(CostEstimate, WallTimeSchedulesEachBatchOnTheSlots) {
+  StageRuns even{"even", 3, 3, 30.0, {{10.0, 10.0, 10.0}}};
+  EXPECT_EQ(stages_wall_s({even}, 2), 20.0);  // two at once, then the third alone
+  EXPECT_EQ(stages_wall_s({even}, 3), 10.0);
+  EXPECT_EQ(stages_wall_s({even}, 1), 30.0);
+  // A long run with short ones beside it: the long one sets the batch's time.
+  StageRuns tail{"tail", 4, 4, 315.0, {{5.0, 5.0, 300.0, 5.0}}};
+  EXPECT_EQ(stages_wall_s({tail}, 2), 305.0);  // 5 | 5, then 300 beside 5
+  // Rounds one after another: {4, 4} then {4, 4, 4} on two slots is 4 + 8.
+  StageRuns rounds{"rounds", 5, 5, 20.0, {{4.0, 4.0}, {4.0, 4.0, 4.0}}};
+  EXPECT_EQ(stages_wall_s({rounds, tail}, 2), 12.0 + 305.0);
+  EXPECT_EQ(stages_wall_s({}, 2), 0.0);
 }
 
 TEST(CostEstimate, ARefusedSceneIsNamedAndPricedAtNothing) {
