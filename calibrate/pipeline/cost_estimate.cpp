@@ -106,15 +106,25 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   // Calibration: runs of every target (under the first model) at each planned point.
   double per_point = 0.0;
   for (int t = 0; t < T; ++t) per_point += cost[0][static_cast<std::size_t>(t)];
-  // One calibration point: a run of every target.
-  const auto point_runs = [&](int points, std::vector<double>& batch) {
+  // The calibration's batches as the scenes of their runs, in order (the first model's stages; a
+  // model calibrated too under calibrate_each_model runs the same), priced under model m.
+  std::vector<std::vector<int>> calibration_batches;
+  const auto priced = [&](const std::vector<int>& scenes, std::size_t m) {
+    std::vector<double> batch;
+    for (const int t : scenes) batch.push_back(cost[m][static_cast<std::size_t>(t)]);
+    return batch;
+  };
+  // A batch of calibration points: a run of every target at each.
+  const auto add_points_batch = [&](int points, StageRuns& r) {
+    std::vector<int>& scenes = calibration_batches.emplace_back();
     for (int p = 0; p < points; ++p)
-      for (int t = 0; t < T; ++t) batch.push_back(cost[0][static_cast<std::size_t>(t)]);
+      for (int t = 0; t < T; ++t) scenes.push_back(t);
+    r.batches.push_back(priced(scenes, 0));
   };
   auto add = [&](const std::string& stage, int points_expected, int points_most, int replicates) {
     StageRuns r{stage, points_expected * replicates * T, points_most * replicates * T, 0.0, {}};
     r.cpu_s = points_expected * replicates * per_point;
-    if (points_expected > 0) point_runs(points_expected * replicates, r.batches.emplace_back());
+    if (points_expected > 0) add_points_batch(points_expected * replicates, r);
     e.stages.push_back(r);
   };
   int calibrated = 0;
@@ -131,7 +141,7 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
   confirm.cpu_s = T > 0 ? static_cast<double>(confirm_runs) / T * per_point : 0.0;
   // Round by round: each round's replicates of every target.
   for (int left = T > 0 ? confirm_runs / T : 0; left > 0; left -= std::max(1, s.confirm.replicates))
-    point_runs(std::min(left, std::max(1, s.confirm.replicates)), confirm.batches.emplace_back());
+    add_points_batch(std::min(left, std::max(1, s.confirm.replicates)), confirm);
   e.stages.push_back(confirm);
   // The pick along the solution curve (curve_stage.cpp), expected when one target has two
   // parameters to calibrate: the named test at every point, or every candidate at the curve's
@@ -145,19 +155,17 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
     curve_scene = candidates.front();
     for (const int c : candidates)
       if (cost[0][static_cast<std::size_t>(c)] > cost[0][static_cast<std::size_t>(curve_scene)]) curve_scene = c;
+    std::vector<int>& scenes = calibration_batches.emplace_back();
     if (candidates.size() > 1) {
-      for (const int c : candidates) {
-        curve.runs += 2;
-        curve.cpu_s += 2.0 * cost[0][static_cast<std::size_t>(c)];
-      }
-      curve.runs += n - 2;
-      curve.cpu_s += (n - 2) * cost[0][static_cast<std::size_t>(curve_scene)];
+      for (const int c : candidates) scenes.insert(scenes.end(), 2, c);
+      scenes.insert(scenes.end(), static_cast<std::size_t>(n - 2), curve_scene);  // n >= 3 (study_config.cpp)
     } else {
-      curve.runs = n;
-      curve.cpu_s = n * cost[0][static_cast<std::size_t>(curve_scene)];
+      scenes.assign(static_cast<std::size_t>(n), curve_scene);
     }
+    curve.batches.push_back(priced(scenes, 0));
+    curve.runs = static_cast<int>(scenes.size());
+    for (const double c : curve.batches.back()) curve.cpu_s += c;
     curve.at_most = curve.runs;
-    curve.batches.push_back(std::vector<double>(static_cast<std::size_t>(curve.runs), curve.runs > 0 ? curve.cpu_s / curve.runs : 0.0));
     e.stages.push_back(curve);
   }
   // [verify] calibrate_each_model: every other model repeats the calibration and the curve under
@@ -180,17 +188,7 @@ StudyCostEstimate estimate_study_cost(const StudyConfig& s, int threads) {
       for (int t = 0; t < T; ++t) per_point_m += cost[m][static_cast<std::size_t>(t)];
       StageRuns r{"calibration of \"" + s.models[m].name + "\"", runs + curve_runs, most + curve_runs, points * per_point_m, {}};
       if (curve_scene >= 0) r.cpu_s += curve_runs * cost[m][static_cast<std::size_t>(curve_scene)];
-      // The first model's batches, each run priced under this model.
-      const std::size_t first_model_stages = e.stages.size() - (m - 1);
-      for (std::size_t k = 0; k < first_model_stages; ++k) {
-        const bool curve_stage = e.stages[k].stage == "curve";
-        const double ratio = curve_stage ? cost[m][static_cast<std::size_t>(curve_scene)] / std::max(cost[0][static_cast<std::size_t>(curve_scene)], 1e-300)
-                                         : per_point_m / std::max(per_point, 1e-300);
-        for (const std::vector<double>& b : e.stages[k].batches) {
-          std::vector<double>& priced = r.batches.emplace_back();
-          for (const double c : b) priced.push_back(c * ratio);
-        }
-      }
+      for (const std::vector<int>& scenes : calibration_batches) r.batches.push_back(priced(scenes, m));
       e.stages.push_back(r);
     }
   }

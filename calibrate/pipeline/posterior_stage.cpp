@@ -242,14 +242,13 @@ nlohmann::json run_posterior(const StudyEvaluator& ev, PipelineState& st, StudyS
     // An interval that runs into an edge of the box where the parameter could go on (the edge is
     // not its min or max) is cut by the box, not by the data: the study has no runs beyond it.
     const IntervalEnds ends = interval_ends(par, st, q, p.interval_lo(q), p.interval_hi(q));
-    const bool cut_lo = ends.cut_lo, cut_hi = ends.cut_hi;
-    const bool ok = width <= kIdentifiedFraction * range && !cut_lo && !cut_hi;
+    const bool ok = width <= kIdentifiedFraction * range && !ends.cut_lo && !ends.cut_hi;
     identified[par.path] = ok;
     std::string why = "95 % interval " + fixed(lo) + " .. " + fixed(hi) + ", " + fixed(100.0 * width / range, 2) +
                       " % of the screening range " + fixed(par.low) + " .. " + fixed(par.high) + " (identified: at most " +
                       fixed(100.0 * kIdentifiedFraction, 2) + " %, not cut by the surrogate box)";
     if (width > kIdentifiedFraction * range) why += ": the targets do not pin it down within their scatter";
-    if (cut_lo || cut_hi)
+    if (ends.cut_lo || ends.cut_hi)
       why += std::string(width > kIdentifiedFraction * range ? "; " : ": ") +
              "the interval runs into the surrogate box's edge, beyond which the study has no runs, so the data may allow values beyond it";
     reasons[par.path] = why;
