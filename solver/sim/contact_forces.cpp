@@ -217,8 +217,8 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     // boundaries, small enough that a chunk's lists stay in the first-level cache.
     constexpr std::uint32_t kChunkPairs = 1024;
     std::vector<std::uint32_t>& touch_k = sc.touch_k;
-    // Hertz-Mindlin reads a scale of one for every pair from a buffer nothing writes to.
-    std::vector<double>& touch_scale = NM == NormalModel::hmnr ? sc.touch_scale : sc.ones;
+    // HMNR's damping scale per touching pair; Hertz-Mindlin's kernel takes none (a scale of 1).
+    std::vector<double>& touch_scale = sc.touch_scale;
     PairBatchArgs args = p.batch;
     args.accumulators = reinterpret_cast<double*>(A);
     args.touched = touched;
@@ -239,7 +239,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
       const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
       const std::size_t span = k_end - k_begin;
       if (touch_k.size() < span) touch_k.resize(span);
-      if (touch_scale.size() < span) touch_scale.resize(span, 1.0);
+      if (NM == NormalModel::hmnr && touch_scale.size() < span) touch_scale.resize(span, 1.0);
       std::uint32_t* __restrict TK = touch_k.data();
       std::uint8_t* __restrict TF = LIVE + k_begin;  // this chunk's pairs: touching now
       const std::size_t n = list_touching_pairs(SV, SI, SJ, k_begin, k_end, TK, TF, TG, RG);
@@ -253,7 +253,8 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
         listed += static_cast<std::size_t>(touching);
       }
       st.sphere_contacts += n;
-      p.batch_fn(args, touch_k.data(), touch_scale.data(), n, pst);
+      p.batch_fn(args, touch_k.data(), NM == NormalModel::hmnr ? touch_scale.data() : nullptr, n,
+                 pst);
       g_begin = g_end;
     }
     st.max_overlap = std::max(st.max_overlap, pst.max_overlap_m);

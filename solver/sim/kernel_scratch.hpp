@@ -21,7 +21,6 @@ struct WallSide {
 struct alignas(64) KernelScratch {
   std::vector<std::uint32_t> touch_k;     // a chunk's touching pairs, in list order
   std::vector<double> touch_scale;        // HMNR: each touching pair's damping scale
-  std::vector<double> ones;               // Hertz-Mindlin: 1.0 for every pair (never written)
   std::vector<WallContactIn> wall_in;     // touching sphere-wall contacts of a batch
   std::vector<double> wall_scale;         // their damping scales (1, or HMNR's)
   std::vector<WallRollingIn> wall_rolling;  // EPSD: their rolling springs' inputs

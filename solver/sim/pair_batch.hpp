@@ -152,7 +152,8 @@ void wall_batch_avx512(const WallBatchArgs& args, const WallBatch& batch);
 WallBatchFn choose_wall_batch(int max_lanes);
 
 // Forces of the touching pairs pairs[0..n) of the neighbour list (every one must touch), with
-// damping scale scale[i] (1, or HMNR's 1/sqrt(contacts)); added to the accumulators in that order.
+// damping scale scale[i] (HMNR's 1/sqrt(contacts); null: 1 for every pair, as Hertz-Mindlin's);
+// added to the accumulators in that order.
 using PairBatchFn = void (*)(const PairBatchArgs& args, const std::uint32_t* pairs,
                              const double* scale, std::size_t n, PairBatchStats& stats);
 

@@ -68,6 +68,12 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
   // Largest overlap and normal force over the batch, lane by lane (an unused lane repeats a pair,
   // which does not change a maximum); folded into `stats` at the end.
   T max_overlap = O::splat(stats.max_overlap_m), max_fn = O::splat(stats.max_fn_n);
+  // Broadcast instead of gathered lane by lane: the damping scale when there is none (Hertz-Mindlin:
+  // 1 for every pair) and the material pair's constants when every sphere is of one material (a
+  // bed of one seed). The same values, so the same bits.
+  const bool unit_scale = scale == nullptr;
+  const bool one_material = a.materials == 1;
+  const BatchPairConstants& c0 = a.pair_constants[0];
   for (std::size_t base = 0; base < n; base += W) {
     prefetch_batch_bodies(a, pairs, std::min(n, base + kPrefetchAhead),
                           std::min(n, base + kPrefetchAhead + W));
@@ -80,17 +86,19 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     for (int l = 0; l < W; ++l) {
       const std::size_t idx = base + static_cast<std::size_t>(l < used ? l : used - 1);
       k[l] = pairs[idx];
-      sc[l] = scale + idx;
+      if (!unit_scale) sc[l] = scale + idx;
       const std::uint32_t s_i = a.si[k[l]], s_j = a.sj[k[l]];
       pi[l] = a.spheres + static_cast<std::size_t>(s_i) * L::kSphereStride;
       pj[l] = a.spheres + static_cast<std::size_t>(s_j) * L::kSphereStride;
       bi[l] = a.sphere_body[s_i];
       bj[l] = a.sphere_body[s_j];
-      const std::uint16_t mat_i = a.sphere_material[s_i], mat_j = a.sphere_material[s_j];
       qi[l] = a.bodies + static_cast<std::size_t>(bi[l]) * L::kBodyStride;
       qj[l] = a.bodies + static_cast<std::size_t>(bj[l]) * L::kBodyStride;
       hist[l] = a.tangential_m + 3 * static_cast<std::size_t>(k[l]);
-      pc[l] = &a.pair_constants[static_cast<std::size_t>(mat_i) * a.materials + mat_j].e_star_pa;
+      if (!one_material) {
+        const std::uint16_t mat_i = a.sphere_material[s_i], mat_j = a.sphere_material[s_j];
+        pc[l] = &a.pair_constants[static_cast<std::size_t>(mat_i) * a.materials + mat_j].e_star_pa;
+      }
       if constexpr (epsd) {
         roll[l] = a.rolling_m + 3 * static_cast<std::size_t>(k[l]);
         ii[l] = a.body_inertia_kg_m2 + 3 * static_cast<std::size_t>(bi[l]);
@@ -133,16 +141,25 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     O::load4(qj, L::kBodyVelocity + 4, wj.y, wj.z, vej.x, vej.y);
     O::load4(qj, L::kBodyVelocity + 8, vej.z, wej.x, wej.y, wej.z);
 
-    T e_star, beta, mu_s, mu_r;
-    O::load4(pc, 0, e_star, beta, mu_s, mu_r);
-    const ContactLaw<T> law{e_star, beta, mu_s, mu_r, O::gather(pc, 4)};
+    T e_star, beta, mu_s, mu_r, tangential_ratio;
+    if (one_material) {
+      e_star = O::splat(c0.e_star_pa);
+      beta = O::splat(c0.beta);
+      mu_s = O::splat(c0.static_friction);
+      mu_r = O::splat(c0.rolling_friction);
+      tangential_ratio = O::splat(c0.sqrt_tangential_ratio);
+    } else {
+      O::load4(pc, 0, e_star, beta, mu_s, mu_r);
+      tangential_ratio = O::gather(pc, 4);
+    }
+    const ContactLaw<T> law{e_star, beta, mu_s, mu_r, tangential_ratio};
     const ContactKinematics<T> kin{normal,
                                    overlap,
                                    ri * rj / rs,
                                    1.0 / (inv_mi + inv_mj),
                                    (vi + cross(wi, rci)) - (vj + cross(wj, rcj)),
                                    (vei + cross(wei, rci)) - (vej + cross(wej, rcj)),
-                                   O::gather(sc, 0)};
+                                   unit_scale ? O::splat(1.0) : O::gather(sc, 0)};
     ContactRotation<T, 2> rot;
     rot.arm_i_m = rci;
     rot.arm_j_m = rcj;
