@@ -124,6 +124,10 @@ void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   batch.bodies = reinterpret_cast<const double*>(pipe.body_view.data());
   batch.pair_constants = p.batch_constants.data();
   batch.materials = nm;
+  batch.uniform_constants =
+      pipe.one_sphere_material >= 0
+          ? &p.batch_constants[static_cast<std::size_t>(pipe.one_sphere_material) * (nm + 1)]
+          : nullptr;
   batch.si = pipe.pairs.si().data();
   batch.sj = pipe.pairs.sj().data();
   batch.tangential_m = tang.empty() ? nullptr : tang.data()->data();

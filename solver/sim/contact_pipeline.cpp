@@ -1,5 +1,7 @@
 #include "solver/sim/contact_pipeline.hpp"
 
+#include <algorithm>
+
 #include "solver/walls/wall.hpp"
 
 
@@ -11,6 +13,11 @@ void ContactPipeline::rebuild(const SphereState& spheres, const std::vector<Wall
   wall_pairs.build(spheres, walls, skin_m, rolling_history);
   wall_pose_at_build_.clear();
   for (const Wall& w : walls) wall_pose_at_build_.push_back(w.pose);
+  one_sphere_material = -1;
+  if (!spheres.material.empty() &&
+      std::all_of(spheres.material.begin(), spheres.material.end(),
+                  [&](std::uint16_t m) { return m == spheres.material.front(); }))
+    one_sphere_material = spheres.material.front();
   ++lists_version;
 }
 

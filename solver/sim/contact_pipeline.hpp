@@ -43,6 +43,9 @@ struct ContactPipeline {
   ContactPass pass;
   // Counts rebuilds and renumberings (ThreadPlan::update_shares).
   std::uint64_t lists_version = 0;
+  // The material every sphere is of, set with the lists (spheres come and go only with a
+  // rebuild); -1 when they differ. Then every sphere pair has the same constants.
+  int one_sphere_material = -1;
 
  private:
   std::vector<WallPose> wall_pose_at_build_;

@@ -43,6 +43,9 @@ struct PairBatchArgs {
   std::uint8_t* touched = nullptr;  // this thread's marks of the accumulators it wrote
   const BatchPairConstants* pair_constants = nullptr;  // [material_i * materials + material_j]
   std::size_t materials = 0;
+  // Every sphere pair's constants when all spheres are of one material (broadcast to the lanes
+  // instead of gathered); null otherwise.
+  const BatchPairConstants* uniform_constants = nullptr;
   const std::uint32_t* si = nullptr;  // neighbour list: sphere i of pair k
   const std::uint32_t* sj = nullptr;
   double* tangential_m = nullptr;  // 3 doubles per pair: the tangential spring

@@ -70,10 +70,10 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
   T max_overlap = O::splat(stats.max_overlap_m), max_fn = O::splat(stats.max_fn_n);
   // Broadcast instead of gathered lane by lane: the damping scale when there is none (Hertz-Mindlin:
   // 1 for every pair) and the material pair's constants when every sphere is of one material (a
-  // bed of one seed). The same values, so the same bits.
+  // bed of one seed, whatever the walls are made of). The same values, so the same bits.
   const bool unit_scale = scale == nullptr;
-  const bool one_material = a.materials == 1;
-  const BatchPairConstants& c0 = a.pair_constants[0];
+  const bool one_material = a.uniform_constants != nullptr;
+  const BatchPairConstants& c0 = one_material ? *a.uniform_constants : a.pair_constants[0];
   for (std::size_t base = 0; base < n; base += W) {
     prefetch_batch_bodies(a, pairs, std::min(n, base + kPrefetchAhead),
                           std::min(n, base + kPrefetchAhead + W));

@@ -13,6 +13,8 @@ struct BedSpec {
   double spacing = 2.2;     // lattice pitch in radii
   double jitter = 0.05;     // position jitter in radii
   double speed_m_s = 0.5;   // random velocity scale
+  // Nonzero: every other sphere of the lattice (checkerboard) is of this material instead of 0.
+  std::uint16_t second_material = 0;
 };
 
 inline void add_box_walls(Simulation& sim, double lx, double ly) {
@@ -32,7 +34,8 @@ inline void add_lattice_spheres(Simulation& sim, const BedSpec& b, double densit
   for (int k = 0; k < b.nz; ++k)
     for (int j = 0; j < b.ny; ++j)
       for (int i = 0; i < b.nx; ++i) {
-        BodyDef d = sphere_body(b.radius_m, density_kg_m3, 0);
+        const bool second = b.second_material != 0 && (i + j + k) % 2 == 1;
+        BodyDef d = sphere_body(b.radius_m, density_kg_m3, second ? b.second_material : 0);
         d.position_m = origin_m + Vec3((i + 0.5) * pitch, (j + 0.5) * pitch, (k + 0.5) * pitch) +
                        b.jitter * b.radius_m * Vec3(u(rng), u(rng), u(rng));
         d.velocity_m_s = b.speed_m_s * Vec3(u(rng), u(rng), u(rng));

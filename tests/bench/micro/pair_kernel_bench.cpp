@@ -61,7 +61,9 @@ LatticePairs make_lattice_pairs(int n_side) {
     const Vec3 d = s.position_m[L.list.sj()[k]] - s.position_m[L.list.si()[k]];
     if (d.squaredNorm() < 4.0 * r * r) L.touching.push_back(k);
   }
-  BodyAccumulator zero{};
+  BodyAccumulator zero{};  // {} leaves the Eigen members unset
+  zero.force_n.setZero();
+  zero.torque_n_m.setZero();
   L.acc.assign(s.size(), zero);
   L.touched.assign(s.size(), 0);
   return L;
@@ -88,6 +90,7 @@ void BM_PairBatch(benchmark::State& state) {
   args.touched = L.touched.data();
   args.pair_constants = &constants;
   args.materials = 1;
+  args.uniform_constants = &constants;  // one material, as the solver passes it
   args.si = L.list.si().data();
   args.sj = L.list.sj().data();
   args.tangential_m = L.list.tangential().data()->data();
