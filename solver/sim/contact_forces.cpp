@@ -85,6 +85,18 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
 
 }  // namespace
 
+std::vector<BatchPairConstants> pack_batch_constants(const InteractionTable& table) {
+  const std::size_t nm = table.material_count();
+  std::vector<BatchPairConstants> packed(nm * nm);
+  for (std::size_t i = 0; i < nm; ++i)
+    for (std::size_t j = 0; j < nm; ++j) {
+      const PairConstants& pc = table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
+      packed[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction, pc.rolling_friction,
+                            pc.sqrt_tangential_ratio};
+    }
+  return packed;
+}
+
 void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   ContactPass& p = pipe.pass;
   p.normal = in.options.contact.normal;
@@ -102,16 +114,7 @@ void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   const InteractionTable& table = in.table;
   const std::size_t nm = table.material_count();
   // The table is fixed for the simulation's life: its constants are packed once.
-  if (p.batch_constants.size() != nm * nm) {
-    p.batch_constants.resize(nm * nm);
-    for (std::size_t i = 0; i < nm; ++i)
-      for (std::size_t j = 0; j < nm; ++j) {
-        const PairConstants& pc =
-            table.pair(static_cast<std::uint16_t>(i), static_cast<std::uint16_t>(j));
-        p.batch_constants[i * nm + j] = {pc.e_star_pa, pc.beta, pc.static_friction,
-                                         pc.rolling_friction, pc.sqrt_tangential_ratio};
-      }
-  }
+  if (p.batch_constants.size() != nm * nm) p.batch_constants = pack_batch_constants(table);
   const bool epsd = p.rolling == RollingModel::epsd;
   auto& tang = pipe.pairs.tangential();
   auto& wtang = pipe.wall_pairs.tangential();
@@ -223,6 +226,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     std::vector<std::uint32_t>& touch_k = sc.touch_k;
     // HMNR's damping scale per touching pair; Hertz-Mindlin's kernel takes none (a scale of 1).
     std::vector<double>& touch_scale = sc.touch_scale;
+    double* scale = nullptr;
     PairBatchArgs args = p.batch;
     args.accumulators = reinterpret_cast<double*>(A);
     args.touched = touched;
@@ -243,7 +247,10 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
       const std::uint32_t k_begin = GS[g_begin], k_end = GS[g_end];
       const std::size_t span = k_end - k_begin;
       if (touch_k.size() < span) touch_k.resize(span);
-      if (NM == NormalModel::hmnr && touch_scale.size() < span) touch_scale.resize(span, 1.0);
+      if constexpr (NM == NormalModel::hmnr) {
+        if (touch_scale.size() < span) touch_scale.resize(span, 1.0);
+        scale = touch_scale.data();
+      }
       std::uint32_t* __restrict TK = touch_k.data();
       std::uint8_t* __restrict TF = LIVE + k_begin;  // this chunk's pairs: touching now
       const std::size_t n = list_touching_pairs(SV, SI, SJ, k_begin, k_end, TK, TF, TG, RG);
@@ -253,12 +260,11 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
         for (std::uint32_t k = GS[g]; k < GS[g + 1]; ++k) touching += TF[k - k_begin];
         GT[g] = touching;
         if constexpr (NM == NormalModel::hmnr)
-          set_group_damping_scale(touching, touch_scale.data() + listed);
+          set_group_damping_scale(touching, scale + listed);
         listed += static_cast<std::size_t>(touching);
       }
       st.sphere_contacts += n;
-      p.batch_fn(args, touch_k.data(), NM == NormalModel::hmnr ? touch_scale.data() : nullptr, n,
-                 pst);
+      p.batch_fn(args, touch_k.data(), scale, n, pst);
       g_begin = g_end;
     }
     st.max_overlap = std::max(st.max_overlap, pst.max_overlap_m);

@@ -61,6 +61,8 @@ struct ContactPass {
 
 // The serial set-up of a step's pass, in `contacts.pass`.
 void prepare_contact_pass(const ContactInputs& in, ContactPipeline& contacts);
+// The table's constants as the batch kernels read them: material pair (i, j) at i * count + j.
+std::vector<BatchPairConstants> pack_batch_constants(const InteractionTable& table);
 // Thread `thread` of a team of `team`: its shares' sphere and wall contacts.
 void run_contact_pass(const ContactInputs& in, ContactPipeline& contacts, ThreadPlan& plan,
                       int thread, int team);

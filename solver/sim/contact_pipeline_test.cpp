@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "solver/core/materials.hpp"
+#include "solver/sim/contact_forces.hpp"
 #include "solver/sim/contact_pipeline.hpp"
 #include "solver/sim/pair_batch.hpp"
 #include "solver/walls/wall.hpp"
@@ -80,13 +81,7 @@ TEST(ContactPipeline, BroadcastConstantsGiveTheGatheredBits) {
   // Material 0 against 0 sits at index 0 of a two-material table; the wall's row differs.
   const InteractionTable table({{"seed", 1340.0, 1.65e8, 0.4}, {"steel", 7800.0, 2.0e11, 0.3}},
                                {{"ss", 0, 0, 0.45, 0.55, 0.05}, {"sw", 0, 1, 0.6, 0.3, 0.02}});
-  std::vector<BatchPairConstants> constants;
-  for (std::uint16_t a = 0; a < 2; ++a)
-    for (std::uint16_t b = 0; b < 2; ++b) {
-      const PairConstants& pc = table.pair(a, b);
-      constants.push_back({pc.e_star_pa, pc.beta, pc.static_friction, pc.rolling_friction,
-                           pc.sqrt_tangential_ratio});
-    }
+  const std::vector<BatchPairConstants> constants = pack_batch_constants(table);
   struct Out {
     std::vector<BodyAccumulator> acc;
     std::vector<Vec3> springs;

@@ -73,7 +73,6 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
   // bed of one seed, whatever the walls are made of). The same values, so the same bits.
   const bool unit_scale = scale == nullptr;
   const bool one_material = a.uniform_constants != nullptr;
-  const BatchPairConstants& c0 = one_material ? *a.uniform_constants : a.pair_constants[0];
   for (std::size_t base = 0; base < n; base += W) {
     prefetch_batch_bodies(a, pairs, std::min(n, base + kPrefetchAhead),
                           std::min(n, base + kPrefetchAhead + W));
@@ -143,11 +142,12 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
 
     T e_star, beta, mu_s, mu_r, tangential_ratio;
     if (one_material) {
-      e_star = O::splat(c0.e_star_pa);
-      beta = O::splat(c0.beta);
-      mu_s = O::splat(c0.static_friction);
-      mu_r = O::splat(c0.rolling_friction);
-      tangential_ratio = O::splat(c0.sqrt_tangential_ratio);
+      const BatchPairConstants& c = *a.uniform_constants;
+      e_star = O::splat(c.e_star_pa);
+      beta = O::splat(c.beta);
+      mu_s = O::splat(c.static_friction);
+      mu_r = O::splat(c.rolling_friction);
+      tangential_ratio = O::splat(c.sqrt_tangential_ratio);
     } else {
       O::load4(pc, 0, e_star, beta, mu_s, mu_r);
       tangential_ratio = O::gather(pc, 4);

@@ -11,6 +11,7 @@
 
 #include "solver/broadphase/verlet_list.hpp"
 #include "solver/core/materials.hpp"
+#include "solver/sim/contact_forces.hpp"
 #include "solver/sim/contact_view.hpp"
 #include "solver/sim/pair_batch.hpp"
 
@@ -78,9 +79,7 @@ void BM_PairBatch(benchmark::State& state) {
   LatticePairs L = make_lattice_pairs(static_cast<int>(state.range(1)));
   // Table 6's seed-seed contact (Jinong 1): E 1.65e8 Pa, nu 0.4, e 0.45, mu 0.55, mu_r 0.05.
   const InteractionTable table({{"seed", 1340.0, 1.65e8, 0.4}}, {{"ss", 0, 0, 0.45, 0.55, 0.05}});
-  const PairConstants& pc = table.pair(0, 0);
-  const BatchPairConstants constants{pc.e_star_pa, pc.beta, pc.static_friction,
-                                     pc.rolling_friction, pc.sqrt_tangential_ratio};
+  const std::vector<BatchPairConstants> constants = pack_batch_constants(table);
   PairBatchArgs args;
   args.spheres = reinterpret_cast<const double*>(L.spheres.data());
   args.sphere_body = L.state.body.data();
@@ -88,9 +87,9 @@ void BM_PairBatch(benchmark::State& state) {
   args.bodies = reinterpret_cast<const double*>(L.bodies.data());
   args.accumulators = reinterpret_cast<double*>(L.acc.data());
   args.touched = L.touched.data();
-  args.pair_constants = &constants;
+  args.pair_constants = constants.data();
   args.materials = 1;
-  args.uniform_constants = &constants;  // one material, as the solver passes it
+  args.uniform_constants = constants.data();  // one material, as the solver passes it
   args.si = L.list.si().data();
   args.sj = L.list.sj().data();
   args.tangential_m = L.list.tangential().data()->data();
