@@ -32,7 +32,8 @@ inline Vec3 cdt_stop_limited(const Vec3& angular_momentum, const Vec3& other_tor
   const Vec3 lp = angular_momentum + h_s * other_torque_n_m;
   const double n = lp.norm();
   if (n == 0.0 || capacity_n_m <= 0.0) return Vec3::Zero();
-  return (-std::min(capacity_n_m, n / h_s) / (capacity_n_m * n)) * lp;
+  // min(C, |L_p| / h) / (C |L_p|) = 1 / max(|L_p|, h C): one division a body instead of two.
+  return (-1.0 / std::max(n, h_s * capacity_n_m)) * lp;
 }
 
 // The literal CDT direction -w/|w| (zero below 1e-12 rad/s, where the direction is undefined).
