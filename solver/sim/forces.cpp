@@ -68,37 +68,52 @@ void Simulation::reduce_forces(int thread, int team, double h, std::int64_t& fir
   Vec3* __restrict cdt_u = cdt ? cdt_torque_per_capacity_.data() : nullptr;
   // Sum the threads' shares in thread order and settle the CDT torque; the NaN guard rides along
   // (lowest bad body reported). The bodies are those whose contacts this thread computed
-  // (sim/work_split.hpp): the same sums in the same order whichever thread adds them.
+  // (sim/work_split.hpp): the same sums in the same order whichever thread adds them. Blocks of
+  // bodies in two passes, as in the body pass (integrate/velocity_verlet.cpp): the sums, then the
+  // CDT torques, whose square root and division form a chain per body that a short second loop
+  // lets the processor overlap across bodies.
+  constexpr std::size_t kBlock = 32;
+  double capacity[kBlock];
   for (std::size_t sh = static_cast<std::size_t>(thread); sh < threads_.shares.size();
        sh += static_cast<std::size_t>(team))
-  for (std::size_t b = threads_.shares[sh].body_begin; b < threads_.shares[sh].body_end; ++b) {
-    Vec3 f = mass[b] * g, tq = Vec3::Zero();
-    double capacity = 0.0;
-    for (std::size_t t = 0; t < nt; ++t) {
-      // A thread's accumulator is read only where it wrote this step (the others hold zero).
-      if (!touched_ptr[t][b]) continue;
-      touched_ptr[t][b] = 0;
-      BodyAccumulator& acc = acc_ptr[t][b];
-      f += acc.force_n;
-      tq += acc.torque_n_m;
-      if (cdt) capacity += acc.roll_capacity_n_m;
-      // Cleared for the next step here, where the line is in cache and the bodies are split
-      // between the threads, instead of by every thread over every body in the kernel.
-      acc.force_n.setZero();
-      acc.torque_n_m.setZero();
-      acc.roll_capacity_n_m = 0.0;
+  for (std::size_t b_block = threads_.shares[sh].body_begin; b_block < threads_.shares[sh].body_end;
+       b_block += kBlock) {
+    const std::size_t block_end = std::min(threads_.shares[sh].body_end, b_block + kBlock);
+    for (std::size_t b = b_block; b < block_end; ++b) {
+      Vec3 f = mass[b] * g, tq = Vec3::Zero();
+      double c = 0.0;
+      for (std::size_t t = 0; t < nt; ++t) {
+        // A thread's accumulator is read only where it wrote this step (the others hold zero).
+        if (!touched_ptr[t][b]) continue;
+        touched_ptr[t][b] = 0;
+        BodyAccumulator& acc = acc_ptr[t][b];
+        f += acc.force_n;
+        tq += acc.torque_n_m;
+        if (cdt) c += acc.roll_capacity_n_m;
+        // Cleared for the next step here, where the line is in cache and the bodies are split
+        // between the threads, instead of by every thread over every body in the kernel.
+        acc.force_n.setZero();
+        acc.torque_n_m.setZero();
+        acc.roll_capacity_n_m = 0.0;
+      }
+      force[b] = f;
+      torque[b] = tq;
+      capacity[b - b_block] = c;
     }
     if (cdt) {
-      Vec3 u = Vec3::Zero();
-      if (capacity > 0.0) u = cdt_limit ? cdt_stop_limited(mom[b], tq, capacity, h)
-                                        : cdt_sign_direction(omega[b]);
-      cdt_u[b] = u;
-      tq += capacity * u;
+      for (std::size_t b = b_block; b < block_end; ++b) {
+        const double c = capacity[b - b_block];
+        Vec3 u = Vec3::Zero();
+        if (c > 0.0) u = cdt_limit ? cdt_stop_limited(mom[b], torque[b], c, h) : cdt_sign_direction(omega[b]);
+        cdt_u[b] = u;
+        torque[b] += c * u;
+      }
     }
-    force[b] = f;
-    torque[b] = tq;
-    if (!std::isfinite(f.sum() + tq.sum()))
-      first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+    for (std::size_t b = b_block; b < block_end; ++b)
+      if (!std::isfinite(force[b].sum() + torque[b].sum())) {
+        first_bad = std::min(first_bad, static_cast<std::int64_t>(b));
+        break;
+      }
   }
   // The walls take the reaction of their contacts' rolling torques (a drum feels it about its
   // axis): this thread's wall contacts are those of the bodies just summed, whose CDT directions
