@@ -65,10 +65,13 @@ std::size_t list_touching_pairs(const SphereView* __restrict SV, const std::uint
 }
 
 // Whether sphere `sv` touches primitive `primitive` of `wall`; fills `hit` (wall frame) when so.
-inline bool touches_wall(const Wall& wall, const SphereView& sv, std::uint32_t primitive,
-                         WallHit& hit) {
-  return wall.shape->nearest(static_cast<int>(primitive), to_wall_frame(wall.pose, sv.position_m),
-                             sv.radius_m, hit) &&
+// `turned`: the wall's orientation is not the identity (otherwise the frames differ by the origin
+// only, and the rotation, which would return its argument, is skipped).
+inline bool touches_wall(const Wall& wall, bool turned, const SphereView& sv,
+                         std::uint32_t primitive, WallHit& hit) {
+  const Vec3 local = turned ? to_wall_frame(wall.pose, sv.position_m)
+                            : Vec3(sv.position_m - wall.pose.origin_m);
+  return wall.shape->nearest(static_cast<int>(primitive), local, sv.radius_m, hit) &&
          hit.distance < sv.radius_m;
 }
 
@@ -324,19 +327,20 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
       const Wall& wall = in.walls[ww[a]];
+      const bool turned = wall.pose.orientation.coeffs() != Quat::Identity().coeffs();
       int touching = 0;
       for (std::uint32_t k = a; k < e; ++k) {
         const SphereView& Si = SV[ws[k]];
         const double r = Si.radius_m;
         WallHit hit;
-        if (!touches_wall(wall, Si, wp[k], hit)) {
+        if (!touches_wall(wall, turned, Si, wp[k], hit)) {
           wtang[k].setZero();
           if constexpr (epsd) wroll[k].setZero();
           continue;
         }
         ++touching;
-        const Vec3 normal = wall.pose.orientation * hit.normal;
-        const Vec3 arm = wall.pose.orientation * hit.point;
+        const Vec3 normal = turned ? Vec3(wall.pose.orientation * hit.normal) : hit.normal;
+        const Vec3 arm = turned ? Vec3(wall.pose.orientation * hit.point) : hit.point;
         const Vec3 cp = wall.pose.origin_m + arm;
         const std::uint32_t b = SB[ws[k]];
         const Vec3 rc = cp - BV[b].position_m;
