@@ -36,7 +36,9 @@
 //     fifth of the Rayleigh step; the spins then flip sign every step and grow until the energy
 //     guard stops the run (tests/physics/dashpot_stability_test.cpp).
 // The kernels hand both velocities to the law; the Simulation makes the "end" ones equal to the
-// half-step ones unless the predicted velocity is chosen (integrate/velocity_verlet.hpp, VerletPass).
+// half-step ones unless the predicted velocity is chosen (integrate/velocity_verlet.hpp, VerletPass),
+// and then the kernels hand the half-step one twice instead of loading and combining the end ones
+// (PairBatchArgs::end_velocities).
 #include "solver/contact/lanes.hpp"
 #include "solver/contact/model_kinds.hpp"
 #include "solver/contact/normal_damping.hpp"

@@ -147,6 +147,9 @@ void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   batch.cdt_lever_from_centre_of_mass = in.options.contact.cdt_lever_from_centre_of_mass;
   batch.epsd_damping_ratio = in.options.contact.epsd_damping_ratio;
   batch.overlap_limit_m = pipe.overlap_limit_m.data();
+  // The body views' end velocities differ from the half-step ones only when the dashpots use the
+  // predicted velocity (Simulation::step, VerletPass::predict_s).
+  batch.end_velocities = in.options.contact.dashpot_predicted;
   p.batch_fn = choose_pair_batch(in.options.simd_lanes);
   WallBatchArgs& wall_args = p.wall_args;
   wall_args.bodies = batch.bodies;
@@ -157,6 +160,7 @@ void prepare_contact_pass(const ContactInputs& in, ContactPipeline& pipe) {
   wall_args.clip_attractive = batch.clip_attractive;
   wall_args.rolling = p.rolling;
   wall_args.epsd_damping_ratio = batch.epsd_damping_ratio;
+  wall_args.end_velocities = batch.end_velocities;
   p.wall_fn = choose_wall_batch(in.options.simd_lanes);
 }
 

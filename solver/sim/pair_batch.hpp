@@ -58,6 +58,9 @@ struct PairBatchArgs {
   bool cdt_lever_from_centre_of_mass = false;
   double epsd_damping_ratio = 0.0;
   const double* overlap_limit_m = nullptr;  // each sphere's deepest allowed overlap (guards)
+  // The dashpots read the body views' end-of-step velocities (ContactOptions::dashpot_predicted);
+  // otherwise those equal the half-step ones and the kernel neither loads nor combines them.
+  bool end_velocities = true;
 };
 
 // The contacts deep enough for the overlap guard to look up their limit (past the prefilter,
@@ -134,6 +137,7 @@ struct WallBatchArgs {
   bool clip_attractive = false;
   RollingModel rolling = RollingModel::none;
   double epsd_damping_ratio = 0.0;
+  bool end_velocities = true;  // as PairBatchArgs::end_velocities
 };
 
 // One batch of touching sphere-wall contacts: in[0..n) with damping scale scale[i] (1, or HMNR's

@@ -57,7 +57,28 @@ inline constexpr std::size_t kPrefetchAhead = 8;
   }
 }
 
-template <class O, RollingModel RM>
+// The body records hold v, w, v_end, w_end back to back (12 doubles): with `End` all four, into
+// v, w, ve, we; without, v and w only (ve, we are then left unset and must not be read).
+template <class O, bool End>
+[[gnu::always_inline]] inline void load_velocities(const double* const* q, V3<typename O::T>& v,
+                                                   V3<typename O::T>& w, V3<typename O::T>& ve,
+                                                   V3<typename O::T>& we) {
+  namespace L = view_layout;
+  static_assert(L::kBodyOmega == L::kBodyVelocity + 3 &&
+                L::kBodyVelocityEnd == L::kBodyVelocity + 6 &&
+                L::kBodyOmegaEnd == L::kBodyVelocity + 9);
+  O::load4(q, L::kBodyVelocity, v.x, v.y, v.z, w.x);
+  if constexpr (End) {
+    O::load4(q, L::kBodyVelocity + 4, w.y, w.z, ve.x, ve.y);
+    O::load4(q, L::kBodyVelocity + 8, ve.z, we.x, we.y, we.z);
+  } else {
+    w.y = O::gather(q, L::kBodyVelocity + 4);
+    w.z = O::gather(q, L::kBodyVelocity + 5);
+  }
+}
+
+// End: the dashpots' velocities differ from the half-step ones (PairBatchArgs::end_velocities).
+template <class O, RollingModel RM, bool End>
 void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const double* scale,
                       std::size_t n, PairBatchStats& stats) {
   using T = typename O::T;
@@ -128,17 +149,9 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
     const V3<T> cp = xi + arm_i * normal;
     const V3<T> rci = cp - ci, rcj = cp - cj;
 
-    // The body records hold v, w, v_end, w_end back to back (12 doubles).
-    static_assert(L::kBodyOmega == L::kBodyVelocity + 3 &&
-                  L::kBodyVelocityEnd == L::kBodyVelocity + 6 &&
-                  L::kBodyOmegaEnd == L::kBodyVelocity + 9);
     V3<T> vi, wi, vei, wei, vj, wj, vej, wej;
-    O::load4(qi, L::kBodyVelocity, vi.x, vi.y, vi.z, wi.x);
-    O::load4(qi, L::kBodyVelocity + 4, wi.y, wi.z, vei.x, vei.y);
-    O::load4(qi, L::kBodyVelocity + 8, vei.z, wei.x, wei.y, wei.z);
-    O::load4(qj, L::kBodyVelocity, vj.x, vj.y, vj.z, wj.x);
-    O::load4(qj, L::kBodyVelocity + 4, wj.y, wj.z, vej.x, vej.y);
-    O::load4(qj, L::kBodyVelocity + 8, vej.z, wej.x, wej.y, wej.z);
+    load_velocities<O, End>(qi, vi, wi, vei, wei);
+    load_velocities<O, End>(qj, vj, wj, vej, wej);
 
     T e_star, beta, mu_s, mu_r, tangential_ratio;
     if (one_material) {
@@ -153,12 +166,15 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
       tangential_ratio = O::gather(pc, 4);
     }
     const ContactLaw<T> law{e_star, beta, mu_s, mu_r, tangential_ratio};
+    const V3<T> v_rel = (vi + cross(wi, rci)) - (vj + cross(wj, rcj));
+    V3<T> v_rel_end = v_rel;
+    if constexpr (End) v_rel_end = (vei + cross(wei, rci)) - (vej + cross(wej, rcj));
     const ContactKinematics<T> kin{normal,
                                    overlap,
                                    ri * rj / rs,
                                    1.0 / (inv_mi + inv_mj),
-                                   (vi + cross(wi, rci)) - (vj + cross(wj, rcj)),
-                                   (vei + cross(wei, rci)) - (vej + cross(wej, rcj)),
+                                   v_rel,
+                                   v_rel_end,
                                    unit_scale ? O::splat(1.0) : O::gather(sc, 0)};
     ContactRotation<T, 2> rot;
     rot.arm_i_m = rci;
@@ -170,7 +186,8 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
       rot.cdt_lever_j_m = a.cdt_lever_from_centre_of_mass ? O::sqrt(dot(rcj, rcj)) : arm_j;
     } else if constexpr (epsd) {
       rot.relative_spin = wi - wj;
-      rot.relative_spin_end = wei - wej;
+      rot.relative_spin_end = rot.relative_spin;
+      if constexpr (End) rot.relative_spin_end = wei - wej;
       // Each body's inertia about the contact point: the mean principal moment plus m |r|^2.
       const T inertia_i = (O::gather(ii, 0) + O::gather(ii, 1) + O::gather(ii, 2)) / 3.0 +
                           O::gather(mi, 0) * dot(rci, rci);
@@ -247,7 +264,7 @@ void pair_batch_lanes(const PairBatchArgs& a, const std::uint32_t* pairs, const 
 
 // The wall batch kernel (sim/pair_batch.hpp): the same contact law, with the wall as the second
 // body.
-template <class O, RollingModel RM>
+template <class O, RollingModel RM, bool End>
 void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
   using T = typename O::T;
   namespace L = view_layout;
@@ -288,14 +305,14 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
     O::load4(rec, 4, rc.x, rc.y, rc.z, radius);
     O::load4(rec, 8, vw.x, vw.y, vw.z, mass);
     V3<T> v, w, ve, we;
-    O::load4(q, L::kBodyVelocity, v.x, v.y, v.z, w.x);
-    O::load4(q, L::kBodyVelocity + 4, w.y, w.z, ve.x, ve.y);
-    O::load4(q, L::kBodyVelocity + 8, ve.z, we.x, we.y, we.z);
+    load_velocities<O, End>(q, v, w, ve, we);
     T e_star, beta, mu_s, mu_r;
     O::load4(pc, 0, e_star, beta, mu_s, mu_r);
     const ContactLaw<T> law{e_star, beta, mu_s, mu_r, O::gather(pc, 4)};
-    const ContactKinematics<T> kin{n_,   overlap, radius, mass, (v + cross(w, rc)) - vw,
-                                   (ve + cross(we, rc)) - vw, O::gather(sc, 0)};
+    const V3<T> v_rel = (v + cross(w, rc)) - vw;
+    V3<T> v_rel_end = v_rel;
+    if constexpr (End) v_rel_end = (ve + cross(we, rc)) - vw;
+    const ContactKinematics<T> kin{n_, overlap, radius, mass, v_rel, v_rel_end, O::gather(sc, 0)};
     const T zero = O::splat(0.0);
     ContactRotation<T, 1> rot;
     rot.arm_i_m = rc;
@@ -308,7 +325,8 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
       T inertia;
       O::load4(spin, 0, ws.x, ws.y, ws.z, inertia);
       rot.relative_spin = w - ws;
-      rot.relative_spin_end = we - ws;
+      rot.relative_spin_end = rot.relative_spin;
+      if constexpr (End) rot.relative_spin_end = we - ws;
       rot.rolling_inertia_kg_m2 = inertia;
       m_k = load3<O>(roll, 0);
     }
@@ -348,24 +366,38 @@ void wall_batch_lanes(const WallBatchArgs& a, const WallBatch& b) {
   }
 }
 
-// The kernels of a lane type, the rolling model chosen once per batch.
+// The kernels of a lane type, the rolling model and whether the end velocities are read chosen
+// once per batch.
+template <class O, bool End>
+void pair_batch_end(const PairBatchArgs& a, const std::uint32_t* pairs, const double* scale,
+                    std::size_t n, PairBatchStats& stats) {
+  switch (a.rolling) {
+    case RollingModel::none: pair_batch_lanes<O, RollingModel::none, End>(a, pairs, scale, n, stats); break;
+    case RollingModel::cdt: pair_batch_lanes<O, RollingModel::cdt, End>(a, pairs, scale, n, stats); break;
+    case RollingModel::epsd: pair_batch_lanes<O, RollingModel::epsd, End>(a, pairs, scale, n, stats); break;
+  }
+}
+
 template <class O>
 void pair_batch(const PairBatchArgs& a, const std::uint32_t* pairs, const double* scale,
                 std::size_t n, PairBatchStats& stats) {
+  if (a.end_velocities) pair_batch_end<O, true>(a, pairs, scale, n, stats);
+  else pair_batch_end<O, false>(a, pairs, scale, n, stats);
+}
+
+template <class O, bool End>
+void wall_batch_end(const WallBatchArgs& a, const WallBatch& b) {
   switch (a.rolling) {
-    case RollingModel::none: pair_batch_lanes<O, RollingModel::none>(a, pairs, scale, n, stats); break;
-    case RollingModel::cdt: pair_batch_lanes<O, RollingModel::cdt>(a, pairs, scale, n, stats); break;
-    case RollingModel::epsd: pair_batch_lanes<O, RollingModel::epsd>(a, pairs, scale, n, stats); break;
+    case RollingModel::none: wall_batch_lanes<O, RollingModel::none, End>(a, b); break;
+    case RollingModel::cdt: wall_batch_lanes<O, RollingModel::cdt, End>(a, b); break;
+    case RollingModel::epsd: wall_batch_lanes<O, RollingModel::epsd, End>(a, b); break;
   }
 }
 
 template <class O>
 void wall_batch(const WallBatchArgs& a, const WallBatch& b) {
-  switch (a.rolling) {
-    case RollingModel::none: wall_batch_lanes<O, RollingModel::none>(a, b); break;
-    case RollingModel::cdt: wall_batch_lanes<O, RollingModel::cdt>(a, b); break;
-    case RollingModel::epsd: wall_batch_lanes<O, RollingModel::epsd>(a, b); break;
-  }
+  if (a.end_velocities) wall_batch_end<O, true>(a, b);
+  else wall_batch_end<O, false>(a, b);
 }
 
 }  // namespace seedcal::lanes

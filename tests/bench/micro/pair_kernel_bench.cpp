@@ -95,6 +95,8 @@ void BM_PairBatch(benchmark::State& state) {
   args.tangential_m = L.list.tangential().data()->data();
   args.dt_s = 1e-6;
   args.rolling = RollingModel::cdt;
+  // The end velocities read (dashpots at the predicted velocity) or not (the default half step).
+  args.end_velocities = state.range(2) != 0;
   const PairBatchFn fn = choose_pair_batch(lanes);
   PairBatchStats stats;
   for (auto _ : state) {
@@ -107,7 +109,9 @@ void BM_PairBatch(benchmark::State& state) {
 }
 // 16^3 = 4,096 spheres (the records in the second-level cache) and 32^3 = 32,768 (in the
 // third-level cache or memory, as in the settled bed's 10,000).
-BENCHMARK(BM_PairBatch)->ArgNames({"lanes", "side"})->ArgsProduct({{1, 4, 8}, {16, 32}});
+BENCHMARK(BM_PairBatch)
+    ->ArgNames({"lanes", "side", "end"})
+    ->ArgsProduct({{1, 4, 8}, {16, 32}, {0, 1}});
 
 }  // namespace
 }  // namespace seedcal
