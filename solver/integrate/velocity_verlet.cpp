@@ -67,7 +67,9 @@ inline Vec3 sphere_centre(const Vec3& body_position, const Mat3& rotation, const
   const double ii = inv_inertia[b].x();
   const Vec3 w = L * ii;
   omega[b] = w;
-  fill_body_view(bview[b], v, w, Vec3(L + hp * T) * ii, force[b], inv_mass[b], hp, p);
+  // Without the predicted dashpot velocity (hp = 0) the end velocity is w itself.
+  fill_body_view(bview[b], v, w, hp == 0.0 ? w : Vec3(Vec3(L + hp * T) * ii), force[b],
+                 inv_mass[b], hp, p);
   centre[i] = p;
   fill_sphere_view(sview[i], p, radius[i]);
   if (ref) max_moved_sq = std::max(max_moved_sq, (p - ref[i]).squaredNorm());
@@ -129,8 +131,12 @@ void move_bodies(BodyState& bodies, SphereState& spheres, BodyView* body_view,
       const Quat q = rot[b];
       const Vec3 w = angular_velocity_from_momentum(q, inv_inertia[b], L, iso);
       omega[b] = w;
+      // Without the predicted dashpot velocity (hp = 0) the end velocity is w itself: the second
+      // rotation of the momentum into the world frame is skipped.
       fill_body_view(bview[b], v, w,
-                     angular_velocity_from_momentum(q, inv_inertia[b], Vec3(L + hp * torque[b]), iso),
+                     hp == 0.0 ? w
+                               : angular_velocity_from_momentum(q, inv_inertia[b],
+                                                                Vec3(L + hp * torque[b]), iso),
                      force[b], inv_mass[b], hp, p);
       // The rotation matrix only when some sphere is off the centre of mass (not for a lone
       // sphere).

@@ -64,7 +64,7 @@ inline void fill_body_view(BodyView& bv, const Vec3& v, const Vec3& w, const Vec
                            const Vec3& force, double inv_mass, double h, const Vec3& position) {
   bv.velocity_m_s = v;
   bv.angular_velocity = w;
-  bv.velocity_end_m_s = v + (h * inv_mass) * force;
+  bv.velocity_end_m_s = h == 0.0 ? v : Vec3(v + (h * inv_mass) * force);
   bv.angular_velocity_end = w_end;
   bv.inv_mass = inv_mass;
   bv.position_m = position;
