@@ -1,6 +1,6 @@
 // End-to-end: `seedcal run` on the custom-scene example data/scenes/examples/hopper.toml at quick
 // fidelity: exit 0, the picture and the measurements' CSV files, and the discharge rate through the
-// orifice against Beverloo's correlation (docs/results/hopper.md).
+// orifice, the mean of three fills, against Beverloo's correlation (docs/results/hopper.md).
 #include <cmath>
 #include <string>
 
@@ -45,18 +45,31 @@ TEST(RunHopperCli, QuickHopperDischargesAtBeverloosRate) {
 
   const auto& dis = j["measurements"]["discharge"];
   ASSERT_TRUE(dis["fit_ok"].get<bool>()) << dis.dump(1);
-  const double d = j["seed_volume_equivalent_diameter_m"].get<double>();
-  const double w = j["discharge_kg_s"].get<double>();
-  const double wb = beverloo_kg_s(0.06, d);  // the orifice of hopper_cone.stl: 60 mm
-  // Within 25 %: Beverloo's own fits scatter by about that much (C from 0.55 to 0.65 across
-  // materials, k from 1 to 3: Nedderman, Statics and Kinematics of Granular Materials, 1992,
-  // chapter 10), and the quick rig's bed is shallow, so its rate falls as it drains.
-  EXPECT_NEAR(w / wb, 1.0, 0.25) << "seedcal " << w << " kg/s, Beverloo " << wb << " kg/s";
   // The seeds that crossed left the hopper: its mass falls by at least what crossed, less the
   // seeds between the orifice and the plane.
   const auto& hop = j["measurements"]["hopper"];
   EXPECT_GT(hop["initial_kg"].get<double>() - hop["final_kg"].get<double>(), 0.9 * dis["crossed_kg"].get<double>());
   EXPECT_LT(j["cpu_seconds"].get<double>(), 600.0);  // a hung run, not a timing
+
+  // The rate of three fills (seeds 1-3), against Beverloo's: one quick-rig fill's rate scatters by
+  // about 10 % from seed to seed (the packing above the orifice), as much as the correlation's own
+  // scatter, so one run would test the draw rather than the flow.
+  double w = j["discharge_kg_s"].get<double>();
+  for (const int seed : {2, 3}) {
+    const std::string out_s = testing::scratch_dir("hopper-" + std::to_string(seed));
+    const auto rs = testing::run_cli("run " + testing::source_dir() +
+                                     "/data/scenes/examples/hopper.toml --set fidelity=quick --threads 1 --seed " +
+                                     std::to_string(seed) + " --quiet --out " + out_s);
+    ASSERT_EQ(rs.exit_code, 0) << rs.output;
+    w += nlohmann::json::parse(testing::read_text(out_s + "/metrics.json"))["discharge_kg_s"].get<double>();
+  }
+  w /= 3.0;
+  const double d = j["seed_volume_equivalent_diameter_m"].get<double>();
+  const double wb = beverloo_kg_s(0.06, d);  // the orifice of hopper_cone.stl: 60 mm
+  // Within 25 %: Beverloo's own fits scatter by about that much (C from 0.55 to 0.65 across
+  // materials, k from 1 to 3: Nedderman, Statics and Kinematics of Granular Materials, 1992,
+  // chapter 10), and the quick rig's bed is shallow, so its rate falls as it drains.
+  EXPECT_NEAR(w / wb, 1.0, 0.25) << "seedcal " << w << " kg/s (mean of three), Beverloo " << wb << " kg/s";
 }
 
 }  // namespace
