@@ -64,9 +64,19 @@ std::size_t list_touching_pairs(const SphereView* __restrict SV, const std::uint
   return n;
 }
 
+// `turned`: the wall's orientation is not the identity. Otherwise its frame differs from the
+// world's by the origin only, and the rotations below, which would return their argument, are
+// skipped.
+inline bool turned_wall(const Wall& wall) {
+  return wall.pose.orientation.coeffs() != Quat::Identity().coeffs();
+}
+
+// A direction of `wall`'s frame in the world's.
+inline Vec3 wall_direction_to_world(const Wall& wall, bool turned, const Vec3& v) {
+  return turned ? Vec3(wall.pose.orientation * v) : v;
+}
+
 // Whether sphere `sv` touches primitive `primitive` of `wall`; fills `hit` (wall frame) when so.
-// `turned`: the wall's orientation is not the identity (otherwise the frames differ by the origin
-// only, and the rotation, which would return its argument, is skipped).
 inline bool touches_wall(const Wall& wall, bool turned, const SphereView& sv,
                          std::uint32_t primitive, WallHit& hit) {
   const Vec3 local = turned ? to_wall_frame(wall.pose, sv.position_m)
@@ -331,7 +341,7 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
     for (std::size_t g = shares[sh].wall_begin; g < shares[sh].wall_end; ++g) {
       const std::uint32_t a = wgs[g], e = wgs[g + 1];
       const Wall& wall = in.walls[ww[a]];
-      const bool turned = wall.pose.orientation.coeffs() != Quat::Identity().coeffs();
+      const bool turned = turned_wall(wall);
       int touching = 0;
       for (std::uint32_t k = a; k < e; ++k) {
         const SphereView& Si = SV[ws[k]];
@@ -343,8 +353,8 @@ void contact_pass(const ContactInputs& in, ContactPipeline& pipe, ThreadPlan& pl
           continue;
         }
         ++touching;
-        const Vec3 normal = turned ? Vec3(wall.pose.orientation * hit.normal) : hit.normal;
-        const Vec3 arm = turned ? Vec3(wall.pose.orientation * hit.point) : hit.point;
+        const Vec3 normal = wall_direction_to_world(wall, turned, hit.normal);
+        const Vec3 arm = wall_direction_to_world(wall, turned, hit.point);
         const Vec3 cp = wall.pose.origin_m + arm;
         const std::uint32_t b = SB[ws[k]];
         const Vec3 rc = cp - BV[b].position_m;

@@ -37,6 +37,28 @@ SphereState lattice(std::uint16_t second) {
   return s;
 }
 
+// A body moving and spinning at random, its end velocities equal to the half-step ones (as
+// without ContactOptions::dashpot_predicted).
+BodyView moving_body(std::mt19937_64& rng, const Vec3& position) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  BodyView b;
+  b.velocity_m_s = 0.01 * Vec3(u(rng), u(rng), u(rng));
+  b.angular_velocity = Vec3(u(rng), u(rng), u(rng));
+  b.velocity_end_m_s = b.velocity_m_s;
+  b.angular_velocity_end = b.angular_velocity;
+  b.inv_mass = 1.0 / 4.5e-5;
+  b.position_m = position;
+  return b;
+}
+
+// A seed and a steel wall: material pair (0, 0) at index 0 of the packed constants, (0, 1) at 1,
+// with other values.
+std::vector<BatchPairConstants> seed_and_steel_constants() {
+  const InteractionTable table({{"seed", 1340.0, 1.65e8, 0.4}, {"steel", 7800.0, 2.0e11, 0.3}},
+                               {{"ss", 0, 0, 0.45, 0.55, 0.05}, {"sw", 0, 1, 0.6, 0.3, 0.02}});
+  return pack_batch_constants(table);
+}
+
 TEST(ContactPipeline, ListsSayWhetherEverySphereIsOfOneMaterial) {
   ContactPipeline one;
   one.skin_m = 0.0004;
@@ -63,16 +85,10 @@ TEST(ContactPipeline, ShortCutsGiveTheBitsOfTheFullKernel) {
   std::vector<SphereView> spheres(s.size());
   std::vector<BodyView> bodies(s.size());
   std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (std::size_t i = 0; i < s.size(); ++i) {
     spheres[i].position_m = s.position_m[i];
     spheres[i].radius_m = s.radius_m[i];
-    bodies[i].velocity_m_s = 0.01 * Vec3(u(rng), u(rng), u(rng));
-    bodies[i].angular_velocity = Vec3(u(rng), u(rng), u(rng));
-    bodies[i].velocity_end_m_s = bodies[i].velocity_m_s;
-    bodies[i].angular_velocity_end = bodies[i].angular_velocity;
-    bodies[i].inv_mass = 1.0 / 4.5e-5;
-    bodies[i].position_m = s.position_m[i];
+    bodies[i] = moving_body(rng, s.position_m[i]);
   }
   std::vector<std::uint32_t> touching;
   for (std::uint32_t k = 0; k < pipe.pairs.pair_count(); ++k) {
@@ -81,10 +97,7 @@ TEST(ContactPipeline, ShortCutsGiveTheBitsOfTheFullKernel) {
     if ((s.position_m[j] - s.position_m[i]).squaredNorm() < rs * rs) touching.push_back(k);
   }
   ASSERT_GT(touching.size(), 100u);
-  // Material 0 against 0 sits at index 0 of a two-material table; the wall's row differs.
-  const InteractionTable table({{"seed", 1340.0, 1.65e8, 0.4}, {"steel", 7800.0, 2.0e11, 0.3}},
-                               {{"ss", 0, 0, 0.45, 0.55, 0.05}, {"sw", 0, 1, 0.6, 0.3, 0.02}});
-  const std::vector<BatchPairConstants> constants = pack_batch_constants(table);
+  const std::vector<BatchPairConstants> constants = seed_and_steel_constants();
   const std::vector<double> mass(s.size(), 4.5e-5);
   const std::vector<Vec3> inertia(s.size(), Vec3::Constant(7.2e-11));
   struct Out {
@@ -151,12 +164,7 @@ TEST(ContactPipeline, WallKernelWithoutEndVelocitiesGivesTheSameBits) {
   std::vector<WallRollingIn> rolling_in(n);
   std::vector<double> scale(n, 1.0);
   for (std::size_t i = 0; i < n; ++i) {
-    bodies[i].velocity_m_s = 0.01 * Vec3(u(rng), u(rng), u(rng));
-    bodies[i].angular_velocity = Vec3(u(rng), u(rng), u(rng));
-    bodies[i].velocity_end_m_s = bodies[i].velocity_m_s;
-    bodies[i].angular_velocity_end = bodies[i].angular_velocity;
-    bodies[i].inv_mass = 1.0 / 4.5e-5;
-    bodies[i].position_m = Vec3(u(rng), u(rng), u(rng));
+    bodies[i] = moving_body(rng, Vec3(u(rng), u(rng), u(rng)));
     const Vec3 normal = Vec3(0.1 * u(rng), 0.1 * u(rng), -1.0).normalized();
     WallContactIn& c = in[i];
     for (int k = 0; k < 3; ++k) {
@@ -174,9 +182,7 @@ TEST(ContactPipeline, WallKernelWithoutEndVelocitiesGivesTheSameBits) {
     c.pair = i;
     rolling_in[i] = {{0.0, 0.0, 0.5}, 7.2e-11 + 4.5e-5 * 4e-6};
   }
-  const InteractionTable table({{"seed", 1340.0, 1.65e8, 0.4}, {"steel", 7800.0, 2.0e11, 0.3}},
-                               {{"ss", 0, 0, 0.45, 0.55, 0.05}, {"sw", 0, 1, 0.6, 0.3, 0.02}});
-  const std::vector<BatchPairConstants> constants = pack_batch_constants(table);
+  const std::vector<BatchPairConstants> constants = seed_and_steel_constants();
   struct Out {
     std::vector<WallContactOut> out;
     std::vector<Vec3> springs, rolling;
